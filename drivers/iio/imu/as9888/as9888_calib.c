@@ -1,0 +1,714 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * AS9888 calibration arithmetic, integer only.
+ *
+ * Every formula here is from section 6 of the AS9888 datasheet (the project's
+ * spec/AS9888-datasheet.md) with its decisions D1..D11; the fixed-point
+ * formats are described in as9888_calib.h. Inputs are range checked first so
+ * that no product can overflow, whatever the caller passes.
+ */
+
+#include <linux/bitfield.h>
+#include <linux/bitops.h>
+#include <linux/errno.h>
+#include <linux/kernel.h>
+#include <linux/math64.h>
+#include <linux/module.h>
+
+#include "as9888_calib.h"
+#include "as9888_compat.h"
+
+/*
+ * Kste / 100 per degC in units of 1e-8: -0.428125 %/degC for index 0, then
+ * +0.04375 %/degC per step (section 6.4).
+ */
+#define AS9888_KSTE_BASE_E8		(-428125)
+#define AS9888_KSTE_STEP_E8		43750
+#define AS9888_KSTE_UNIT		100000000000LL	/* 1e8 * mdegC/degC */
+#define AS9888_MDEGC_PER_DEGC		1000
+#define AS9888_ST_NOMINAL		256
+#define AS9888_ST_RT_MIN		(AS9888_ST_NOMINAL - 16)
+#define AS9888_ST_RT_MAX		(AS9888_ST_NOMINAL + 15)
+#define AS9888_KSTE_IDX_MAX		7
+#define AS9888_EHC_OFFSET		128
+#define AS9888_Q8_SHIFT			8
+#define AS9888_Q16_SHIFT		16
+/* DAC rounding: (gain + 16) / 2048 * Ot_L with Ot_L in Q16 */
+#define AS9888_DAC_GAIN_OFFSET		16
+#define AS9888_DAC_FULL_SCALE		2048
+#define AS9888_DAC_ROUND_SHIFT		27	/* log2(2048 * 65536) */
+/*
+ * Kote = s9 * 1.5 / dT with dT = dTMPS / 1.6 degC, that is
+ * s9 * 12 / (5 * dTMPS); the D4 fallback dT = 35 degC gives s9 * 3 / 70.
+ */
+#define AS9888_KOTE_NUM			12
+#define AS9888_KOTE_DEN			5
+#define AS9888_KOTE_FALLBACK_NUM	3
+#define AS9888_KOTE_FALLBACK_DEN	70
+#define AS9888_KOTE_NUM_MAX		(256 * AS9888_KOTE_NUM)
+#define AS9888_KOTE_DEN_MAX		(255 * AS9888_KOTE_DEN)
+#define AS9888_UG_PER_G			1000000
+/* Largest sensitivity accepted by the estimators, LSB/g in Q16 */
+#define AS9888_ST_Q16_MAX		(1024 * AS9888_Q16_ONE)
+#define AS9888_ACC_MEAN_Q16_MAX		(32768LL * AS9888_Q16_ONE)
+
+/**
+ * as9888_div_round_s64() - divide and round to nearest, ties to even
+ * @num: dividend
+ * @den: divisor, must be > 0 (0 is returned otherwise)
+ *
+ * This is rint() of the exact quotient, as D5 asks for the DAC estimate.
+ */
+s64 as9888_div_round_s64(s64 num, s64 den)
+{
+	s64 q, r;
+
+	if (den <= 0)
+		return 0;
+
+	q = div64_s64(num, den);
+	r = num - q * den;
+	if (r < 0) {
+		q--;
+		r += den;
+	}
+	/* Now q = floor(num / den) and 0 <= r < den. */
+	if (r > den - r || (r == den - r && (q & 1)))
+		q++;
+
+	return q;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_div_round_s64, AS9888_NS);
+
+static bool as9888_in_range(s64 value, s64 lo, s64 hi)
+{
+	return value >= lo && value <= hi;
+}
+
+static bool as9888_t_valid(s32 t_mdegc)
+{
+	return as9888_in_range(t_mdegc, AS9888_CALIB_T_MIN_MDEGC,
+			       AS9888_CALIB_T_MAX_MDEGC);
+}
+
+bool as9888_tmps_valid(u8 tmps)
+{
+	return tmps >= AS9888_TMPS_MIN && tmps <= AS9888_TMPS_MAX;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_tmps_valid, AS9888_NS);
+
+/* T = (176 - TMPS) / 1.6 degC, exact in millidegrees */
+s32 as9888_tmps_to_mdegc(u8 tmps)
+{
+	return (AS9888_TMPS_ZERO_DEGC - (s32)tmps) * AS9888_MDEGC_PER_TMPS;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_tmps_to_mdegc, AS9888_NS);
+
+/**
+ * as9888_mdegc_to_tmps() - the TMPS code the chip reports at a temperature
+ * @t_mdegc: temperature, millidegrees Celsius
+ *
+ * Return: rint(176 - 1.6 * t), not limited to the valid code range.
+ */
+int as9888_mdegc_to_tmps(s32 t_mdegc)
+{
+	return AS9888_TMPS_ZERO_DEGC -
+	       (int)as9888_div_round_s64(t_mdegc, AS9888_MDEGC_PER_TMPS);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_mdegc_to_tmps, AS9888_NS);
+
+/**
+ * as9888_tmps_mean_to_mdegc() - temperature of the mean of n TMPS codes
+ * @tmps_sum: sum of the codes
+ * @n: number of codes, 1..AS9888_SAMPLES_MAX
+ * @t_mdegc: the temperature, rounded to the nearest millidegree
+ *
+ * Return: 0, -EINVAL for a bad @n, -ERANGE for a sum no codes can give.
+ */
+int as9888_tmps_mean_to_mdegc(s64 tmps_sum, u32 n, s32 *t_mdegc)
+{
+	s64 num;
+
+	if (n == 0 || n > AS9888_SAMPLES_MAX)
+		return -EINVAL;
+	if (!as9888_in_range(tmps_sum, 0, (s64)U8_MAX * n))
+		return -ERANGE;
+
+	num = ((s64)AS9888_TMPS_ZERO_DEGC * n - tmps_sum) *
+	      AS9888_MDEGC_PER_TMPS;
+	*t_mdegc = (s32)as9888_div_round_s64(num, n);
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_tmps_mean_to_mdegc, AS9888_NS);
+
+/* Magnetometer sensitivity adjustment: H * (EHC + 128) / 256, in Q8 */
+s32 as9888_mag_adjust_q8(s16 h, u8 ehc)
+{
+	return (s32)h * ((s32)ehc + AS9888_EHC_OFFSET);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_mag_adjust_q8, AS9888_NS);
+
+/* Steps 2-7..2-12: -4096 and 4095 (or anything beyond) mean overflow */
+bool as9888_mag_overflow(s16 h)
+{
+	return h <= AS9888_MAG_MIN || h >= AS9888_MAG_MAX;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_mag_overflow, AS9888_NS);
+
+/**
+ * as9888_selftest_ok() - self-test window of steps 2-17..2-22
+ * @axis: 0 (X), 1 (Y) or 2 (Z)
+ * @h: raw self-test reading of that axis
+ * @ehc: the axis' sensitivity adjustment from the EEPROM
+ *
+ * The window applies to the adjusted value; comparing in Q8 is exact.
+ */
+bool as9888_selftest_ok(int axis, s16 h, u8 ehc)
+{
+	s32 adj = as9888_mag_adjust_q8(h, ehc);
+	s32 lo, hi;
+
+	if (as9888_mag_overflow(h))
+		return false;
+
+	switch (axis) {
+	case 0:
+	case 1:
+		lo = AS9888_SELFTEST_XY_MIN;
+		hi = AS9888_SELFTEST_XY_MAX;
+		break;
+	case 2:
+		lo = AS9888_SELFTEST_Z_MIN;
+		hi = AS9888_SELFTEST_Z_MAX;
+		break;
+	default:
+		return false;
+	}
+
+	return adj >= lo * (1 << AS9888_Q8_SHIFT) &&
+	       adj <= hi * (1 << AS9888_Q8_SHIFT);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_selftest_ok, AS9888_NS);
+
+static bool as9888_trim_valid(const struct as9888_axis_trim *trim)
+{
+	return as9888_in_range(trim->st_rt, AS9888_ST_RT_MIN, AS9888_ST_RT_MAX) &&
+	       trim->kste_idx <= AS9888_KSTE_IDX_MAX &&
+	       as9888_in_range(trim->kote_num, -AS9888_KOTE_NUM_MAX,
+			       AS9888_KOTE_NUM_MAX) &&
+	       as9888_in_range(trim->kote_den, 1, AS9888_KOTE_DEN_MAX);
+}
+
+/**
+ * as9888_sensitivity_q16() - St(t) = St_RT * (1 + Kste / 100 * (t - t_RT))
+ * @trim: the axis' decoded EEPROM data
+ * @t_rt_mdegc: the factory room temperature t_RT
+ * @t_mdegc: the temperature t
+ * @st_q16: the sensitivity, LSB/g in Q16
+ *
+ * Return: 0, -EINVAL for an invalid @trim, -ERANGE for a temperature out of
+ * the accepted range.
+ */
+int as9888_sensitivity_q16(const struct as9888_axis_trim *trim,
+			   s32 t_rt_mdegc, s32 t_mdegc, s32 *st_q16)
+{
+	s64 kste_e8, factor;
+
+	if (!as9888_trim_valid(trim))
+		return -EINVAL;
+	if (!as9888_t_valid(t_rt_mdegc) || !as9888_t_valid(t_mdegc))
+		return -ERANGE;
+
+	kste_e8 = AS9888_KSTE_BASE_E8 + AS9888_KSTE_STEP_E8 * trim->kste_idx;
+	/* |kste_e8 * dt| <= 428125 * 250000, so factor stays below 2.1e11 */
+	factor = AS9888_KSTE_UNIT + kste_e8 * ((s64)t_mdegc - t_rt_mdegc);
+	/* st_rt * 2^16 * factor <= 271 * 2^16 * 2.1e11 < 2^62 */
+	*st_q16 = (s32)as9888_div_round_s64((s64)trim->st_rt * AS9888_Q16_ONE *
+					    factor, AS9888_KSTE_UNIT);
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_sensitivity_q16, AS9888_NS);
+
+/**
+ * as9888_offset_level_q16() - Ot_L = A + St(t_L) * G for one axis
+ * @a_mean_q16: mean raw level reading A, Q16
+ * @st_level_q16: sensitivity at the level-test temperature, Q16
+ * @g: the axis' component of the gravity direction, -1, 0 or 1
+ * @ot_l_q16: the level-test offset, Q16
+ *
+ * Return: 0 or -EINVAL for inputs out of range.
+ */
+int as9888_offset_level_q16(s32 a_mean_q16, s32 st_level_q16, int g,
+			    s32 *ot_l_q16)
+{
+	if (!as9888_in_range(a_mean_q16, -AS9888_ACC_MEAN_Q16_MAX,
+			     AS9888_ACC_MEAN_Q16_MAX) ||
+	    !as9888_in_range(st_level_q16, 0, AS9888_ST_Q16_MAX) ||
+	    !as9888_in_range(g, -1, 1))
+		return -EINVAL;
+
+	*ot_l_q16 = a_mean_q16 + st_level_q16 * g;
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_offset_level_q16, AS9888_NS);
+
+/**
+ * as9888_offset_q16() - Ot(t) = Kote * (t - t_L) + Ot_L for one axis
+ * @trim: the axis' decoded EEPROM data (for Kote)
+ * @ot_l_q16: the level-test offset Ot_L, Q16
+ * @t_level_mdegc: the level-test temperature t_L
+ * @t_mdegc: the temperature t
+ * @ot_q16: the offset at @t_mdegc, Q16
+ *
+ * Return: 0, -EINVAL for an invalid @trim, -ERANGE for a temperature out of
+ * range or an offset that does not fit.
+ */
+int as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
+		      s32 t_level_mdegc, s32 t_mdegc, s32 *ot_q16)
+{
+	s64 drift, ot;
+
+	if (!as9888_trim_valid(trim))
+		return -EINVAL;
+	if (!as9888_t_valid(t_level_mdegc) || !as9888_t_valid(t_mdegc))
+		return -ERANGE;
+
+	/* |num * dt * 2^16| <= 3072 * 250000 * 2^16 < 2^56 */
+	drift = as9888_div_round_s64((s64)trim->kote_num *
+				     ((s64)t_mdegc - t_level_mdegc) *
+				     AS9888_Q16_ONE,
+				     (s64)trim->kote_den * AS9888_MDEGC_PER_DEGC);
+	ot = drift + ot_l_q16;
+	if (!as9888_in_range(ot, S32_MIN, S32_MAX))
+		return -ERANGE;
+
+	*ot_q16 = (s32)ot;
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_offset_q16, AS9888_NS);
+
+/**
+ * as9888_accel_ug() - compensated reading a = (raw - Ot(t)) / St(t)
+ * @raw: raw accelerometer sample
+ * @ot_q16: offset at the temperature of the sample, Q16
+ * @st_q16: sensitivity at that temperature, Q16, > 0
+ * @a_ug: the acceleration, micro-g
+ *
+ * Return: 0, -EINVAL for a sensitivity <= 0, -ERANGE when the result does
+ * not fit.
+ */
+int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug)
+{
+	s64 a;
+
+	if (st_q16 <= 0)
+		return -EINVAL;
+
+	a = as9888_div_round_s64(((s64)raw * AS9888_Q16_ONE - ot_q16) *
+				 AS9888_UG_PER_G, st_q16);
+	if (!as9888_in_range(a, S32_MIN, S32_MAX))
+		return -ERANGE;
+
+	*a_ug = (s32)a;
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_accel_ug, AS9888_NS);
+
+/**
+ * as9888_mean_q16() - mean of n s16 samples in Q16, rounded to nearest
+ * @sum: sum of the samples
+ * @n: number of samples, 1..AS9888_SAMPLES_MAX
+ * @mean_q16: the mean
+ *
+ * Return: 0, -EINVAL for a bad @n, -ERANGE for a sum no s16 samples give.
+ */
+int as9888_mean_q16(s64 sum, u32 n, s32 *mean_q16)
+{
+	if (n == 0 || n > AS9888_SAMPLES_MAX)
+		return -EINVAL;
+	if (!as9888_in_range(sum, (s64)S16_MIN * n, (s64)S16_MAX * n))
+		return -ERANGE;
+
+	*mean_q16 = (s32)as9888_div_round_s64(sum * AS9888_Q16_ONE, n);
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_mean_q16, AS9888_NS);
+
+/**
+ * as9888_dac2lin() - DAC register value to signed linear code (6.6)
+ * @ga: the axis' gain register value (bit 6 is the polarity)
+ * @da: the DAC register value
+ */
+int as9888_dac2lin(u8 ga, u8 da)
+{
+	int lin = da >= AS9888_DAC_ZERO ? da - AS9888_DAC_ZERO : -(int)da;
+
+	return ga & AS9888_GA_POLARITY_MSK ? -lin : lin;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_dac2lin, AS9888_NS);
+
+/**
+ * as9888_lin2dac() - signed linear code to DAC register value (6.6)
+ * @ga: the axis' gain register value (bit 6 is the polarity)
+ * @lin: linear code; values beyond +-AS9888_DAC_LIN_MAX are clamped
+ */
+u8 as9888_lin2dac(u8 ga, int lin)
+{
+	lin = clamp(lin, -AS9888_DAC_LIN_MAX, AS9888_DAC_LIN_MAX);
+	if (ga & AS9888_GA_POLARITY_MSK)
+		lin = -lin;
+
+	return lin >= 0 ? AS9888_DAC_ZERO + lin : -lin;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_lin2dac, AS9888_NS);
+
+bool as9888_dac_valid(u8 da)
+{
+	return da <= AS9888_DAC_NEG_MAX ||
+	       (da >= AS9888_DAC_ZERO && da <= AS9888_DAC_POS_MAX);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_dac_valid, AS9888_NS);
+
+/* Output change per linear DAC code: 2048 / (GA[5:0] + 16) LSB, in Q16 */
+s32 as9888_dac_step_q16(u8 ga)
+{
+	return (s32)as9888_div_round_s64((s64)AS9888_DAC_FULL_SCALE *
+					 AS9888_Q16_ONE,
+					 FIELD_GET(AS9888_GA_GAIN_MSK, ga) +
+					 AS9888_DAC_GAIN_OFFSET);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_dac_step_q16, AS9888_NS);
+
+/**
+ * as9888_dac_opt() - the optimal DAC value of step 3-23 (6.6, D5, D6)
+ * @ga: the gain register value AxGA
+ * @da: the DAC register value ADA the level test ran with
+ * @ee_gain: EAxGA[5:0]
+ * @ot_l_q16: the level-test offset measured with @da, Q16
+ * @da_opt: DACopt
+ *
+ * lin_opt = dac2lin(ga, da) - rint((ee_gain + 16) / 2048 * Ot_L), clamped
+ * to the DAC range.
+ *
+ * Return: 0, or -ERANGE when lin_opt had to be clamped (D6: the function
+ * test fails with "offset beyond DAC range"; @da_opt holds the clamped
+ * value).
+ */
+int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt)
+{
+	s64 shift, lin;
+
+	/* |(63 + 16) * Ot_L| < 2^38: exact, and the division is exact rint */
+	shift = as9888_div_round_s64(((s64)FIELD_GET(AS9888_GA_GAIN_MSK, ee_gain) +
+				      AS9888_DAC_GAIN_OFFSET) * ot_l_q16,
+				     1LL << AS9888_DAC_ROUND_SHIFT);
+	lin = as9888_dac2lin(ga, da) - shift;
+	*da_opt = as9888_lin2dac(ga, (int)clamp_t(s64, lin, -AS9888_DAC_LIN_MAX,
+						  AS9888_DAC_LIN_MAX));
+
+	return abs(lin) > AS9888_DAC_LIN_MAX ? -ERANGE : 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_dac_opt, AS9888_NS);
+
+/* Steps 3-14..3-19: -2048 and 2047 (or anything beyond) mean saturation */
+bool as9888_acc_saturated(s16 a)
+{
+	return a <= AS9888_ACC_MIN || a >= AS9888_ACC_MAX;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_acc_saturated, AS9888_NS);
+
+/* Steps 3-20..3-22: the spread of the averaged samples */
+bool as9888_fluctuation_ok(s16 min, s16 max, u32 limit)
+{
+	return max >= min && (u32)((s32)max - min) <= limit;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_fluctuation_ok, AS9888_NS);
+
+/**
+ * as9888_samples_needed() - N >= n * (sigma / error)^2 (Note 2, D7)
+ * @n: number of samples in each pilot average sigma was measured over
+ * @sigma_q16: standard deviation of the n-sample averages, LSB in Q16
+ * @error_q16: permissible error of the final average, LSB in Q16
+ *
+ * Return: the number of samples to average, at least AS9888_SAMPLES_MIN;
+ * a value above AS9888_SAMPLES_MAX means the environment is too noisy
+ * for the permissible error (also returned for @error_q16 == 0).
+ */
+u32 as9888_samples_needed(u32 n, u32 sigma_q16, u32 error_q16)
+{
+	u64 var, err2, num, q;
+
+	if (error_q16 == 0)
+		return AS9888_SAMPLES_MAX + 1;
+	if (n == 0)
+		n = 1;
+
+	var = (u64)sigma_q16 * sigma_q16;
+	err2 = (u64)error_q16 * error_q16;
+	if (var > U64_MAX / n)
+		return AS9888_SAMPLES_MAX + 1;
+
+	num = var * n;
+	q = div64_u64(num, err2);
+	if (q * err2 < num)
+		q++;
+
+	if (q > AS9888_SAMPLES_MAX)
+		return AS9888_SAMPLES_MAX + 1;
+
+	return max_t(u32, (u32)q, AS9888_SAMPLES_MIN);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_samples_needed, AS9888_NS);
+
+/**
+ * as9888_posture_detect() - gravity direction from a level reading (D8)
+ * @a_mean_q16: mean raw reading per axis, Q16
+ * @g: the gravity direction: the axis of largest |A|, opposite to A
+ *
+ * Return: the index of the vertical axis.
+ */
+int as9888_posture_detect(const s32 a_mean_q16[AS9888_AXES],
+			  s8 g[AS9888_AXES])
+{
+	int axis, vertical = 0;
+
+	for (axis = 1; axis < AS9888_AXES; axis++)
+		if (abs((s64)a_mean_q16[axis]) > abs((s64)a_mean_q16[vertical]))
+			vertical = axis;
+
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		g[axis] = 0;
+	g[vertical] = a_mean_q16[vertical] > 0 ? -1 : 1;
+
+	return vertical;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_posture_detect, AS9888_NS);
+
+/**
+ * as9888_posture_check() - is the unit level with gravity along G? (D8)
+ * @a_mean_q16: mean raw reading per axis, Q16
+ * @st_q16: sensitivity per axis at the level-test temperature, Q16
+ * @g: gravity direction, one axis at -1 or +1, the others 0
+ *
+ * A horizontal axis must read at most St/2, the vertical one at least St/2
+ * against the direction of gravity.
+ */
+enum as9888_posture_error
+as9888_posture_check(const s32 a_mean_q16[AS9888_AXES],
+		     const s32 st_q16[AS9888_AXES],
+		     const s8 g[AS9888_AXES])
+{
+	int axis, vertical = -1;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		if (g[axis] == 0)
+			continue;
+		if ((g[axis] != 1 && g[axis] != -1) || vertical >= 0)
+			return AS9888_POSTURE_BAD_G;
+		vertical = axis;
+	}
+	if (vertical < 0)
+		return AS9888_POSTURE_BAD_G;
+
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		if (axis != vertical &&
+		    2 * abs((s64)a_mean_q16[axis]) > (s64)st_q16[axis])
+			return AS9888_POSTURE_NOT_LEVEL;
+
+	if ((s64)a_mean_q16[vertical] * g[vertical] > 0)
+		return AS9888_POSTURE_WRONG_SIGN;
+	if (2 * abs((s64)a_mean_q16[vertical]) < (s64)st_q16[vertical])
+		return AS9888_POSTURE_NOT_VERTICAL;
+
+	return AS9888_POSTURE_OK;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_posture_check, AS9888_NS);
+
+static void as9888_decode_axis(const u8 *raw, int axis,
+			       struct as9888_axis_trim *trim)
+{
+	u8 eaga = raw[AS9888_EE_EAGA(axis)];
+	u8 eagtd = raw[AS9888_EE_EAGTD(axis)];
+	u32 dt9;
+
+	trim->ehc = raw[AS9888_EE_EHC(axis)];
+	trim->ga = FIELD_GET(AS9888_EAGA_REG_MSK, eaga);
+	trim->gain = FIELD_GET(AS9888_GA_GAIN_MSK, eaga);
+	trim->da = raw[AS9888_EE_EADA(axis)];
+	trim->st_rt = AS9888_ST_NOMINAL +
+		      sign_extend32(FIELD_GET(AS9888_EAGTD_DETAIL_MSK, eagtd), 4);
+	trim->kste_idx = FIELD_GET(AS9888_EAGTD_KSTE_MSK, eagtd);
+	dt9 = FIELD_GET(AS9888_EAGA_DT_SIGN_MSK, eaga) << 8 |
+	      raw[AS9888_EE_EADT(axis)];
+	trim->dt = sign_extend32(dt9, 8);
+}
+
+/**
+ * as9888_kote() - offset temperature slope of one axis (6.5, D4)
+ * @dt: the axis' 9-bit signed offset temperature property
+ * @et1: TMPS code of the factory room-temperature test
+ * @et2: TMPS code of the factory high-temperature test
+ * @kote_num: Kote = @kote_num / @kote_den LSB/degC
+ * @kote_den: always > 0
+ *
+ * Return: true when ET1/ET2 could not be used and the span of 35 degC of
+ * D4 was taken instead.
+ */
+bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num, s32 *kote_den)
+{
+	s32 dtmps = (s32)et1 - et2;
+	s32 delta_t = dtmps * AS9888_MDEGC_PER_TMPS;
+
+	dt = clamp_t(s32, dt, -(AS9888_KOTE_NUM_MAX / AS9888_KOTE_NUM),
+		     AS9888_KOTE_NUM_MAX / AS9888_KOTE_NUM - 1);
+	if (!as9888_tmps_valid(et1) || !as9888_tmps_valid(et2) ||
+	    !as9888_in_range(delta_t, AS9888_DELTA_T_MIN_MDEGC,
+			     AS9888_DELTA_T_MAX_MDEGC)) {
+		*kote_num = dt * AS9888_KOTE_FALLBACK_NUM;
+		*kote_den = AS9888_KOTE_FALLBACK_DEN;
+		return true;
+	}
+
+	*kote_num = dt * AS9888_KOTE_NUM;
+	*kote_den = dtmps * AS9888_KOTE_DEN;
+
+	return false;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_kote, AS9888_NS);
+
+/* Kote of every axis, with the warnings of D4 and D9 */
+static void as9888_decode_kote(struct as9888_eeprom *ee)
+{
+	u8 et1 = ee->raw[AS9888_EE_ET1], et2 = ee->raw[AS9888_EE_ET2];
+	bool fallback = false;
+	int axis;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		struct as9888_axis_trim *trim = &ee->axis[axis];
+
+		fallback = as9888_kote(trim->dt, et1, et2, &trim->kote_num,
+				       &trim->kote_den);
+		/* D9: |Kote| > 10.2 LSB/degC is only a warning */
+		if (abs(trim->kote_num) * 10 > AS9888_KOTE_WARN_X10 * trim->kote_den)
+			ee->warnings |= AS9888_EE_WARN_KOTE_X << axis;
+	}
+
+	if (fallback) {
+		ee->warnings |= AS9888_EE_WARN_DELTA_T;
+		ee->delta_t_mdegc = AS9888_DELTA_T_FALLBACK_DEGC *
+				    AS9888_MDEGC_PER_DEGC;
+	} else {
+		ee->delta_t_mdegc = ((s32)et1 - et2) * AS9888_MDEGC_PER_TMPS;
+	}
+}
+
+/**
+ * as9888_eeprom_decode() - decode and validate the factory EEPROM
+ * @raw: the 21 bytes of 0x40..0x54
+ * @ee: the decoded data; filled in even when the EEPROM is unusable
+ *
+ * Return: 0 when the data can be used (possibly with warnings), -ENODATA
+ * for a blank (all 0xff) or unreadable (all 0x00) EEPROM, -EINVAL when a
+ * field is out of its valid range. @ee->errors says which.
+ */
+int as9888_eeprom_decode(const u8 raw[AS9888_EEPROM_LEN],
+			 struct as9888_eeprom *ee)
+{
+	bool all_ff = true, all_00 = true;
+	int i, axis;
+
+	for (i = 0; i < AS9888_EEPROM_LEN; i++) {
+		ee->raw[i] = raw[i];
+		all_ff &= raw[i] == U8_MAX;
+		all_00 &= raw[i] == 0;
+	}
+
+	ee->errors = 0;
+	ee->warnings = 0;
+	ee->ref1 = raw[AS9888_EE_EREF1];
+	ee->ref2 = raw[AS9888_EE_EREF2];
+	ee->ref3 = AS9888_REF3_FIXED |
+		   FIELD_GET(AS9888_EREF3_TRIM_MSK, raw[AS9888_EE_EREF3]);
+	ee->osc = raw[AS9888_EE_EOSC];
+	ee->t_rt_mdegc =
+		as9888_tmps_to_mdegc(AS9888_TMPS_RT_BASE +
+				     sign_extend32(FIELD_GET(AS9888_EREF3_TRT_MSK,
+							     raw[AS9888_EE_EREF3]),
+						   4));
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		struct as9888_axis_trim *trim = &ee->axis[axis];
+
+		as9888_decode_axis(raw, axis, trim);
+		if (!as9888_in_range(trim->gain, AS9888_GAIN_MIN,
+				     AS9888_GAIN_MAX))
+			ee->errors |= AS9888_EE_ERR_GAIN_X << axis;
+		if (!as9888_dac_valid(trim->da))
+			ee->errors |= AS9888_EE_ERR_DAC_X << axis;
+	}
+	as9888_decode_kote(ee);
+
+	if (all_ff)
+		ee->errors |= AS9888_EE_ERR_BLANK;
+	if (all_00)
+		ee->errors |= AS9888_EE_ERR_ZERO;
+
+	if (ee->errors & (AS9888_EE_ERR_BLANK | AS9888_EE_ERR_ZERO))
+		return -ENODATA;
+
+	return ee->errors ? -EINVAL : 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_eeprom_decode, AS9888_NS);
+
+/* as9888_ee_error_str() - what one enum as9888_ee_error bit means */
+const char *as9888_ee_error_str(u32 error_bit)
+{
+	switch (error_bit) {
+	case AS9888_EE_ERR_BLANK:
+		return "EEPROM blank (all bytes 0xff)";
+	case AS9888_EE_ERR_ZERO:
+		return "EEPROM reads all 0x00 (not in EEPROM access mode?)";
+	case AS9888_EE_ERR_GAIN_X:
+		return "EAXGA gain outside 7..43";
+	case AS9888_EE_ERR_GAIN_Y:
+		return "EAYGA gain outside 7..43";
+	case AS9888_EE_ERR_GAIN_Z:
+		return "EAZGA gain outside 7..43";
+	case AS9888_EE_ERR_DAC_X:
+		return "EAXDA outside 0..67 and 128..195";
+	case AS9888_EE_ERR_DAC_Y:
+		return "EAYDA outside 0..67 and 128..195";
+	case AS9888_EE_ERR_DAC_Z:
+		return "EAZDA outside 0..67 and 128..195";
+	default:
+		return "unknown EEPROM error";
+	}
+}
+EXPORT_SYMBOL_NS_GPL(as9888_ee_error_str, AS9888_NS);
+
+/* as9888_ee_warning_str() - what one enum as9888_ee_warning bit means */
+const char *as9888_ee_warning_str(u32 warning_bit)
+{
+	switch (warning_bit) {
+	case AS9888_EE_WARN_DELTA_T:
+		return "ET1/ET2 invalid or span not 10..80 degC: 35 degC used (D4)";
+	case AS9888_EE_WARN_KOTE_X:
+		return "X offset temperature slope beyond 10.2 LSB/degC (D9)";
+	case AS9888_EE_WARN_KOTE_Y:
+		return "Y offset temperature slope beyond 10.2 LSB/degC (D9)";
+	case AS9888_EE_WARN_KOTE_Z:
+		return "Z offset temperature slope beyond 10.2 LSB/degC (D9)";
+	default:
+		return "unknown EEPROM warning";
+	}
+}
+EXPORT_SYMBOL_NS_GPL(as9888_ee_warning_str, AS9888_NS);
+
+MODULE_DESCRIPTION("AS9888 calibration arithmetic");
+MODULE_LICENSE("GPL");

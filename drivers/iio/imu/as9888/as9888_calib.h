@@ -1,0 +1,237 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * AS9888 calibration arithmetic: EEPROM decoding, temperature conversion,
+ * magnetometer sensitivity adjustment, accelerometer sensitivity and offset
+ * estimation, offset DAC optimisation and the judgments of the vendor's
+ * on-board function test.
+ *
+ * This unit is pure integer arithmetic. It builds in the kernel and, through
+ * the small <linux/...> stand-ins under tools/include, in userspace; it calls
+ * nothing but 64-bit division helpers and has no undefined behaviour for any
+ * value of its inputs.
+ *
+ * Fixed-point formats (the suffix of a name says which one it carries):
+ *
+ *   _mdegc  temperature in millidegrees Celsius (s32). TMPS codes convert
+ *           exactly: T = (176 - TMPS) * 625 mdegC.
+ *   _q16    a quantity in accelerometer LSB (or LSB/g for sensitivities,
+ *           LSB/degC for slopes) scaled by 2^16, i.e. 1/65536 LSB per unit
+ *           (s32 unless noted). Binary scaling makes the DAC rounding exact:
+ *           (gain + 16) * Ot_L / 2048 is an integer over 2^27.
+ *   _ug     acceleration in micro-g (s32).
+ *
+ * Temperatures handed to the estimators must lie within
+ * AS9888_CALIB_T_MIN_MDEGC .. AS9888_CALIB_T_MAX_MDEGC; the functions that
+ * take one return -ERANGE otherwise, which keeps every product in range.
+ */
+#ifndef AS9888_CALIB_H
+#define AS9888_CALIB_H
+
+#include <linux/bits.h>
+#include <linux/types.h>
+
+#define AS9888_AXES			3
+
+/* EEPROM window 0x40..0x54, read in one burst in EEPROM access mode */
+#define AS9888_EEPROM_LEN		21
+#define AS9888_EE_EREF1			0
+#define AS9888_EE_EREF2			1
+#define AS9888_EE_EREF3			2
+#define AS9888_EE_EOSC			3
+#define AS9888_EE_EHC(axis)		(4 + (axis))
+#define AS9888_EE_EAGA(axis)		(7 + (axis))
+#define AS9888_EE_EADT(axis)		(10 + (axis))
+#define AS9888_EE_EADA(axis)		(13 + (axis))
+#define AS9888_EE_EAGTD(axis)		(16 + (axis))
+#define AS9888_EE_ET1			19
+#define AS9888_EE_ET2			20
+
+/* EEPROM bit fields */
+#define AS9888_EREF3_TRT_MSK		GENMASK(7, 3)
+#define AS9888_EREF3_TRIM_MSK		GENMASK(2, 0)
+#define AS9888_REF3_FIXED		0x18
+#define AS9888_EAGA_DT_SIGN_MSK		BIT(7)
+#define AS9888_EAGA_REG_MSK		GENMASK(6, 0)
+#define AS9888_GA_POLARITY_MSK		BIT(6)
+#define AS9888_GA_GAIN_MSK		GENMASK(5, 0)
+#define AS9888_EAGTD_KSTE_MSK		GENMASK(7, 5)
+#define AS9888_EAGTD_DETAIL_MSK		GENMASK(4, 0)
+
+/* Valid ranges of the EEPROM fields and registers */
+#define AS9888_GAIN_MIN			7
+#define AS9888_GAIN_MAX			43
+#define AS9888_DAC_NEG_MAX		67	/* 0..67: linear code 0..-67 */
+#define AS9888_DAC_ZERO			0x80	/* reset value: linear code 0 */
+#define AS9888_DAC_POS_MAX		(AS9888_DAC_ZERO + 67)
+#define AS9888_DAC_LIN_MAX		67
+#define AS9888_TMPS_MIN			0x28	/* 85 degC */
+#define AS9888_TMPS_MAX			0xe0	/* -30 degC */
+#define AS9888_TMPS_ZERO_DEGC		176
+#define AS9888_TMPS_RT_BASE		136
+#define AS9888_MDEGC_PER_TMPS		625	/* 1 / 1.6 degC */
+
+/* D4: bounds of the factory temperature span and its fallback */
+#define AS9888_DELTA_T_MIN_MDEGC	10000
+#define AS9888_DELTA_T_MAX_MDEGC	80000
+#define AS9888_DELTA_T_FALLBACK_DEGC	35
+
+/* Accepted temperature range of every estimator input */
+#define AS9888_CALIB_T_MIN_MDEGC	(-100000)
+#define AS9888_CALIB_T_MAX_MDEGC	150000
+
+/* Raw sample limits */
+#define AS9888_MAG_MIN			(-4096)
+#define AS9888_MAG_MAX			4095
+#define AS9888_ACC_MIN			(-2048)
+#define AS9888_ACC_MAX			2047
+
+/* Application note, step 2: self-test windows after sensitivity adjustment */
+#define AS9888_SELFTEST_XY_MIN		(-100)
+#define AS9888_SELFTEST_XY_MAX		100
+#define AS9888_SELFTEST_Z_MIN		300
+#define AS9888_SELFTEST_Z_MAX		1000
+
+/* Note 3: recommended fluctuation judgment (max - min), LSB */
+#define AS9888_FLUCTUATION_DEFAULT	15
+/* D7: at least this many samples are averaged */
+#define AS9888_SAMPLES_MIN		10
+/* Largest N the estimators and the record accept */
+#define AS9888_SAMPLES_MAX		4096
+/* D9: offset temperature slope beyond this (LSB/degC, x10) is a warning */
+#define AS9888_KOTE_WARN_X10		102
+
+#define AS9888_Q16_ONE			65536
+
+/* Problems found while decoding the EEPROM (as9888_eeprom.errors) */
+enum as9888_ee_error {
+	AS9888_EE_ERR_BLANK		= BIT(0),	/* all bytes 0xff */
+	AS9888_EE_ERR_ZERO		= BIT(1),	/* all bytes 0x00 */
+	AS9888_EE_ERR_GAIN_X		= BIT(2),	/* EAxGA gain not 7..43 */
+	AS9888_EE_ERR_GAIN_Y		= BIT(3),
+	AS9888_EE_ERR_GAIN_Z		= BIT(4),
+	AS9888_EE_ERR_DAC_X		= BIT(5),	/* EAxDA not 0..67, 128..195 */
+	AS9888_EE_ERR_DAC_Y		= BIT(6),
+	AS9888_EE_ERR_DAC_Z		= BIT(7),
+};
+
+/* Conditions worth reporting that do not stop the calibration */
+enum as9888_ee_warning {
+	/* D4: ET1/ET2 invalid or span not 10..80 degC, 35 degC used */
+	AS9888_EE_WARN_DELTA_T		= BIT(0),
+	/* D9: |Kote| beyond 10.2 LSB/degC on an axis */
+	AS9888_EE_WARN_KOTE_X		= BIT(1),
+	AS9888_EE_WARN_KOTE_Y		= BIT(2),
+	AS9888_EE_WARN_KOTE_Z		= BIT(3),
+};
+
+/**
+ * struct as9888_axis_trim - per-axis factory data decoded from the EEPROM
+ * @ehc:	magnetometer sensitivity adjustment EHCx
+ * @ga:		accelerometer gain register value, EAxGA[6:0] (polarity + gain)
+ * @da:		factory offset DAC register value EAxDA
+ * @gain:	EAxGA[5:0]
+ * @st_rt:	sensitivity at t_RT, LSB/g (256 + detail, 240..271)
+ * @kste_idx:	sensitivity temperature coefficient index, 0..7
+ * @dt:		offset temperature property, 9-bit signed (-256..255)
+ * @kote_num:	offset temperature slope Kote = @kote_num / @kote_den LSB/degC
+ * @kote_den:	always > 0
+ */
+struct as9888_axis_trim {
+	u8 ehc;
+	u8 ga;
+	u8 da;
+	u8 gain;
+	s32 st_rt;
+	u8 kste_idx;
+	s32 dt;
+	s32 kote_num;
+	s32 kote_den;
+};
+
+/**
+ * struct as9888_eeprom - the decoded factory trim
+ * @raw:	the 21 EEPROM bytes as read, 0x40 first
+ * @ref1:	value for REF1
+ * @ref2:	value for REF2
+ * @ref3:	value for REF3, 0x18 | EREF3[2:0]
+ * @osc:	value for OSC
+ * @t_rt_mdegc:	factory room-temperature test temperature t_RT
+ * @delta_t_mdegc: factory temperature span used for Kote (after D4)
+ * @axis:	per-axis data, X, Y, Z
+ * @errors:	enum as9888_ee_error bits; non-zero means unusable
+ * @warnings:	enum as9888_ee_warning bits
+ */
+struct as9888_eeprom {
+	u8 raw[AS9888_EEPROM_LEN];
+	u8 ref1;
+	u8 ref2;
+	u8 ref3;
+	u8 osc;
+	s32 t_rt_mdegc;
+	s32 delta_t_mdegc;
+	struct as9888_axis_trim axis[AS9888_AXES];
+	u32 errors;
+	u32 warnings;
+};
+
+int as9888_eeprom_decode(const u8 raw[AS9888_EEPROM_LEN],
+			 struct as9888_eeprom *ee);
+const char *as9888_ee_error_str(u32 error_bit);
+const char *as9888_ee_warning_str(u32 warning_bit);
+
+/* Temperature */
+s32 as9888_tmps_to_mdegc(u8 tmps);
+int as9888_mdegc_to_tmps(s32 t_mdegc);
+int as9888_tmps_mean_to_mdegc(s64 tmps_sum, u32 n, s32 *t_mdegc);
+bool as9888_tmps_valid(u8 tmps);
+
+/* Magnetometer: H_adj = H * (EHC + 128) / 256, returned in 1/256 LSB */
+s32 as9888_mag_adjust_q8(s16 h, u8 ehc);
+bool as9888_mag_overflow(s16 h);
+bool as9888_selftest_ok(int axis, s16 h, u8 ehc);
+
+/* Accelerometer sensitivity and offset (section 6 of the datasheet) */
+int as9888_sensitivity_q16(const struct as9888_axis_trim *trim,
+			   s32 t_rt_mdegc, s32 t_mdegc, s32 *st_q16);
+bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num, s32 *kote_den);
+int as9888_offset_level_q16(s32 a_mean_q16, s32 st_level_q16, int g,
+			    s32 *ot_l_q16);
+int as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
+		      s32 t_level_mdegc, s32 t_mdegc, s32 *ot_q16);
+int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug);
+int as9888_mean_q16(s64 sum, u32 n, s32 *mean_q16);
+
+/* Offset DAC */
+int as9888_dac2lin(u8 ga, u8 da);
+u8 as9888_lin2dac(u8 ga, int lin);
+bool as9888_dac_valid(u8 da);
+s32 as9888_dac_step_q16(u8 ga);
+int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt);
+
+/* Judgments of the application note */
+bool as9888_acc_saturated(s16 a);
+bool as9888_fluctuation_ok(s16 min, s16 max, u32 limit);
+
+/* Note 2 / D7: number of samples to average */
+u32 as9888_samples_needed(u32 n, u32 sigma_q16, u32 error_q16);
+
+/* D8: posture detection */
+enum as9888_posture_error {
+	AS9888_POSTURE_OK = 0,
+	AS9888_POSTURE_NOT_LEVEL,	/* a horizontal axis reads > St/2 */
+	AS9888_POSTURE_NOT_VERTICAL,	/* the vertical axis reads < St/2 */
+	AS9888_POSTURE_WRONG_SIGN,	/* given G and the reading disagree */
+	AS9888_POSTURE_BAD_G,		/* G is not one axis, +1 or -1 */
+};
+
+int as9888_posture_detect(const s32 a_mean_q16[AS9888_AXES],
+			  s8 g[AS9888_AXES]);
+enum as9888_posture_error
+as9888_posture_check(const s32 a_mean_q16[AS9888_AXES],
+		     const s32 st_q16[AS9888_AXES],
+		     const s8 g[AS9888_AXES]);
+
+/* Rounding helper shared with the users of this unit */
+s64 as9888_div_round_s64(s64 num, s64 den);
+
+#endif /* AS9888_CALIB_H */
