@@ -1,0 +1,58 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Chip operations over a transport: reset, mode changes that respect t_PD,
+ * single measurements with event-driven waits and the one-burst sample
+ * read. Register knowledge comes from as9888_regs.h.
+ */
+#ifndef AS9888_CHIP_H
+#define AS9888_CHIP_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "transport.h"
+
+#define CHIP_AXES	3
+
+/**
+ * struct chip - a chip behind a transport
+ * @t:		the transport
+ * @pd_since_ns: when the chip last entered power-down (as far as we know)
+ * @use_int1:	wait on INT1 (else poll ST1 DRDY)
+ */
+struct chip {
+	struct transport *t;
+	uint64_t pd_since_ns;
+	bool use_int1;
+};
+
+/* One burst of ST1..ST2, decoded */
+struct chip_sample {
+	uint8_t st1;
+	int16_t mag[CHIP_AXES];
+	uint8_t tmps;
+	uint8_t empt;
+	int16_t acc[CHIP_AXES];
+	uint8_t st2;
+};
+
+/* How a measurement ended */
+enum chip_wait {
+	CHIP_WAIT_INT1 = 0,	/* INT1 rose */
+	CHIP_WAIT_DRDY,		/* DRDY polled (INT1 not monitored or failed) */
+	CHIP_WAIT_TIMEOUT,	/* nothing within the timeout */
+};
+
+void chip_init(struct chip *c, struct transport *t);
+/* RSTN low for t_RSTL, high, then t_BOOT; -EOPNOTSUPP without RSTN */
+int chip_reset(struct chip *c);
+/* Write MS, first waiting out t_PD when the new mode needs it */
+int chip_set_mode(struct chip *c, uint8_t ms);
+/* Start @ms (single or self-test) and wait for its end; see enum chip_wait */
+int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
+		 enum chip_wait *how);
+int chip_read_sample(struct chip *c, struct chip_sample *s);
+/* The datasheet time of a measurement with these SLCT2 settings */
+uint64_t chip_measure_time_us(bool men, bool alpf);
+
+#endif

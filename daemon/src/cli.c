@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: GPL-2.0
+/* Command-line parsing of as9888-calibd: strict, with clear messages. */
+#include <errno.h>
+#include <getopt.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+enum {
+	OPT_RECORD = 256,
+	OPT_BACKEND,
+	OPT_UNIT,
+	OPT_SIM_CLOCK,
+	OPT_JSON,
+	OPT_SAMPLES,
+	OPT_PERMISSIBLE_ERROR,
+	OPT_FLUCTUATION,
+	OPT_LPF,
+	OPT_GRAVITY,
+	OPT_STABLE_TIMEOUT,
+	OPT_KEEP_GOING,
+	OPT_TEMPERATURE,
+	OPT_VERBOSE,
+	OPT_HELP,
+};
+
+static const struct option long_opts[] = {
+	{ "record", required_argument, NULL, OPT_RECORD },
+	{ "backend", required_argument, NULL, OPT_BACKEND },
+	{ "unit", required_argument, NULL, OPT_UNIT },
+	{ "sim-clock", required_argument, NULL, OPT_SIM_CLOCK },
+	{ "json", no_argument, NULL, OPT_JSON },
+	{ "samples", required_argument, NULL, OPT_SAMPLES },
+	{ "permissible-error", required_argument, NULL, OPT_PERMISSIBLE_ERROR },
+	{ "fluctuation", required_argument, NULL, OPT_FLUCTUATION },
+	{ "lpf", no_argument, NULL, OPT_LPF },
+	{ "gravity", required_argument, NULL, OPT_GRAVITY },
+	{ "stable-timeout", required_argument, NULL, OPT_STABLE_TIMEOUT },
+	{ "keep-going", no_argument, NULL, OPT_KEEP_GOING },
+	{ "temperature", required_argument, NULL, OPT_TEMPERATURE },
+	{ "verbose", no_argument, NULL, OPT_VERBOSE },
+	{ "help", no_argument, NULL, OPT_HELP },
+	{ NULL, 0, NULL, 0 },
+};
+
+static int bad(char *err, size_t errlen, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+static int bad(char *err, size_t errlen, const char *fmt, ...)
+{
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(err, errlen, fmt, ap);
+	va_end(ap);
+
+	return -EINVAL;
+}
+
+int cli_parse_fixed(const char *s, int decimals, int64_t lo, int64_t hi,
+		    int64_t *out)
+{
+	bool neg = false, point = false;
+	int64_t v = 0;
+	int digits = 0, frac = 0;
+
+	if (*s == '-' || *s == '+')
+		neg = *s++ == '-';
+	for (; *s; s++) {
+		if (*s == '.' && !point && digits) {
+			point = true;
+			continue;
+		}
+		if (*s < '0' || *s > '9' || ++digits > 15)
+			return -EINVAL;
+		if (point && ++frac > decimals)
+			return -EINVAL;
+		v = v * 10 + (*s - '0');
+	}
+	if (!digits || (point && !frac))
+		return -EINVAL;
+	for (; frac < decimals; frac++)
+		v *= 10;
+	if (neg)
+		v = -v;
+	if (v < lo || v > hi)
+		return -ERANGE;
+	*out = v;
+
+	return 0;
+}
+
+static int parse_gravity(const char *s, int8_t g[3])
+{
+	static const char axes[] = "xyz";
+	const char *axis = strlen(s) == 2 ? strchr(axes, s[0]) : NULL;
+
+	if (!axis || !s[0] || (s[1] != '+' && s[1] != '-'))
+		return -EINVAL;
+	memset(g, 0, 3);
+	g[axis - axes] = s[1] == '+' ? 1 : -1;
+
+	return 0;
+}
+
+static const char *const commands[] = {
+	[CLI_HELP] = "help",
+	[CLI_FACTORY_TEST] = "factory-test",
+	[CLI_RESTORE] = "restore",
+	[CLI_SHOW] = "show",
+};
+
+/* Which options each command takes */
+static bool option_allowed(enum cli_command cmd, int opt)
+{
+	switch (opt) {
+	case OPT_RECORD:
+	case OPT_HELP:
+		return true;
+	case OPT_BACKEND:
+	case OPT_UNIT:
+	case OPT_SIM_CLOCK:
+		return cmd == CLI_FACTORY_TEST || cmd == CLI_RESTORE;
+	case OPT_JSON:
+		return cmd == CLI_FACTORY_TEST || cmd == CLI_SHOW;
+	case OPT_TEMPERATURE:
+		return cmd == CLI_SHOW;
+	case OPT_VERBOSE:
+		return cmd == CLI_RESTORE;
+	default:
+		return cmd == CLI_FACTORY_TEST;
+	}
+}
+
+int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
+	      size_t errlen)
+{
+	unsigned int i;
+	int64_t v;
+	int opt;
+
+	memset(o, 0, sizeof(*o));
+	o->record_path = CLI_DEFAULT_RECORD;
+	ftest_opts_default(&o->ftest);
+
+	if (argc < 2)
+		return bad(err, errlen, "no command given");
+	for (i = 0; i < sizeof(commands) / sizeof(commands[0]); i++)
+		if (!strcmp(argv[1], commands[i]))
+			break;
+	if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))
+		i = CLI_HELP;
+	if (i == sizeof(commands) / sizeof(commands[0]))
+		return bad(err, errlen, "unknown command \"%s\"", argv[1]);
+	o->command = (enum cli_command)i;
+
+	optind = 2;
+	opterr = 0;
+	while ((opt = getopt_long(argc, argv, "", long_opts, NULL)) != -1) {
+		if (opt == '?') {
+			if (optopt)
+				return bad(err, errlen, "option needs a value or is unknown: %s",
+					   argv[optind - 1]);
+			return bad(err, errlen, "unknown option %s", argv[optind - 1]);
+		}
+		if (!option_allowed(o->command, opt))
+			return bad(err, errlen, "%s does not take %s",
+				   commands[o->command], argv[optind - 1]);
+		switch (opt) {
+		case OPT_RECORD:
+			if (!*optarg)
+				return bad(err, errlen, "--record needs a path");
+			o->record_path = optarg;
+			break;
+		case OPT_BACKEND:
+			if (strcmp(optarg, "sim"))
+				return bad(err, errlen, "unknown backend \"%s\" (this build has: sim)",
+					   optarg);
+			break;
+		case OPT_UNIT:
+			o->unit_path = optarg;
+			break;
+		case OPT_SIM_CLOCK:
+			if (!strcmp(optarg, "virtual"))
+				o->virtual_clock = true;
+			else if (strcmp(optarg, "real"))
+				return bad(err, errlen, "--sim-clock takes real or virtual, not \"%s\"",
+					   optarg);
+			break;
+		case OPT_JSON:
+			o->json = true;
+			break;
+		case OPT_SAMPLES:
+			if (cli_parse_fixed(optarg, 0, AS9888_SAMPLES_MIN,
+					    AS9888_SAMPLES_MAX, &v))
+				return bad(err, errlen, "--samples takes an integer %d..%d, not \"%s\"",
+					   AS9888_SAMPLES_MIN, AS9888_SAMPLES_MAX,
+					   optarg);
+			o->ftest.samples = (uint32_t)v;
+			break;
+		case OPT_PERMISSIBLE_ERROR:
+			/* LSB with up to 3 decimals, 0.001..100 */
+			if (cli_parse_fixed(optarg, 3, 1, 100000, &v))
+				return bad(err, errlen, "--permissible-error takes LSB in 0.001..100, not \"%s\"",
+					   optarg);
+			o->ftest.permissible_error_q16 =
+				(uint32_t)((v * AS9888_Q16_ONE + 500) / 1000);
+			break;
+		case OPT_FLUCTUATION:
+			if (cli_parse_fixed(optarg, 0, 0, 4095, &v))
+				return bad(err, errlen, "--fluctuation takes an integer 0..4095, not \"%s\"",
+					   optarg);
+			o->ftest.fluctuation = (uint32_t)v;
+			break;
+		case OPT_LPF:
+			o->ftest.lpf = true;
+			break;
+		case OPT_GRAVITY:
+			if (parse_gravity(optarg, o->ftest.gravity))
+				return bad(err, errlen, "--gravity takes x+ x- y+ y- z+ z-, not \"%s\"",
+					   optarg);
+			o->ftest.gravity_given = true;
+			break;
+		case OPT_STABLE_TIMEOUT:
+			if (cli_parse_fixed(optarg, 0, 0, 600000, &v))
+				return bad(err, errlen, "--stable-timeout takes milliseconds 0..600000, not \"%s\"",
+					   optarg);
+			o->ftest.stable_timeout_ms = (uint32_t)v;
+			break;
+		case OPT_KEEP_GOING:
+			o->ftest.keep_going = true;
+			break;
+		case OPT_TEMPERATURE:
+			if (cli_parse_fixed(optarg, 3, -30000, 85000, &v))
+				return bad(err, errlen, "--temperature takes degrees Celsius -30..85, not \"%s\"",
+					   optarg);
+			o->temperature_given = true;
+			o->temperature_mdegc = (int32_t)v;
+			break;
+		case OPT_VERBOSE:
+			o->verbose = true;
+			break;
+		case OPT_HELP:
+			o->command = CLI_HELP;
+			break;
+		}
+	}
+	if (optind < argc)
+		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
+
+	return 0;
+}

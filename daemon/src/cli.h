@@ -1,0 +1,53 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/* Command-line parsing of as9888-calibd. */
+#ifndef AS9888_CLI_H
+#define AS9888_CLI_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ftest.h"
+
+#define CLI_DEFAULT_RECORD	"/var/lib/as9888/calibration"
+
+enum cli_command {
+	CLI_HELP = 0,
+	CLI_FACTORY_TEST,
+	CLI_RESTORE,
+	CLI_SHOW,
+};
+
+/**
+ * struct cli_opts - everything the command line says
+ * @command:		what to do
+ * @record_path:	calibration record
+ * @unit_path:		simulated unit (NULL: built-in)
+ * @virtual_clock:	simulator in virtual time
+ * @json:		JSON output
+ * @verbose:		say what was done on success
+ * @temperature_given:	--temperature was given
+ * @temperature_mdegc:	its value
+ * @ftest:		factory-test options
+ */
+struct cli_opts {
+	enum cli_command command;
+	const char *record_path;
+	const char *unit_path;
+	bool virtual_clock;
+	bool json;
+	bool verbose;
+	bool temperature_given;
+	int32_t temperature_mdegc;
+	struct ftest_opts ftest;
+};
+
+/* Returns 0, or -EINVAL with a message in @err */
+int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
+	      size_t errlen);
+
+/* Parse a decimal with up to @decimals fraction digits, scaled by 10^@decimals */
+int cli_parse_fixed(const char *s, int decimals, int64_t lo, int64_t hi,
+		    int64_t *out);
+
+#endif

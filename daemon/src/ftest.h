@@ -1,0 +1,85 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * The factory on-board function test: steps 1 to 3 of the application note
+ * with the datasheet's decisions, over a register-level transport. Step 4
+ * (storing the record) belongs to the caller, which knows where.
+ */
+#ifndef AS9888_FTEST_H
+#define AS9888_FTEST_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "as9888_calib.h"
+#include "record.h"
+#include "report.h"
+#include "transport.h"
+
+/* Pilot samples taken to measure the noise for --permissible-error */
+#define FTEST_PILOT_SAMPLES		32
+/* Largest TMPS spread (codes) within one averaging run: 0.625 degC */
+#define FTEST_TMPS_SPREAD_MAX		1
+#define FTEST_STABLE_TIMEOUT_MS_DEFAULT	10000
+
+/**
+ * struct ftest_opts - how to run the test
+ * @samples:		N, samples averaged per level measurement (0: D7's 10)
+ * @permissible_error_q16: Sigma of Note 2 in LSB Q16 (0: use @samples)
+ * @fluctuation:	max - min limit per axis, LSB (Note 3)
+ * @lpf:		accelerometer low-pass filter on (SLCT2 ALPF)
+ * @gravity_given:	@gravity was given (else D8 detects it)
+ * @gravity:		direction of gravity in the sensor frame
+ * @keep_going:		go on after a failed judgment
+ * @stable_timeout_ms:	how long to wait for a stable temperature
+ * @level_only:		skip step 2 (field recalibration)
+ */
+struct ftest_opts {
+	uint32_t samples;
+	uint32_t permissible_error_q16;
+	uint32_t fluctuation;
+	bool lpf;
+	bool gravity_given;
+	int8_t gravity[AS9888_AXES];
+	bool keep_going;
+	uint32_t stable_timeout_ms;
+	bool level_only;
+};
+
+void ftest_opts_default(struct ftest_opts *o);
+
+/**
+ * struct ftest_result - what the test found
+ * @report:	every judgment
+ * @warnings:	EEPROM warnings (D4, D9), as enum as9888_ee_warning bits
+ * @ee:		the decoded EEPROM (valid when @have_eeprom)
+ * @have_eeprom: step 1 read and decoded the EEPROM
+ * @have_calibration: step 3 completed and @rec holds the calibration
+ * @rec:	the calibration record (without timestamp)
+ * @offset_q16:	Ot_L per axis with the new DAC values
+ */
+struct ftest_result {
+	struct report report;
+	uint32_t warnings;
+	struct as9888_eeprom ee;
+	bool have_eeprom;
+	bool have_calibration;
+	struct calib_record rec;
+	int32_t offset_q16[AS9888_AXES];
+};
+
+/*
+ * Run steps 1..3. Returns 0 when the test ran to its end (judgments may
+ * still have failed: see report_first_failure()), -errno when it could not
+ * go on (the failing judgment is in the report).
+ */
+int ftest_run(struct transport *t, const struct ftest_opts *o,
+	      struct ftest_result *res);
+void ftest_result_free(struct ftest_result *res);
+
+/*
+ * Step 1 only: reset, identify, read the EEPROM, load the trims and check
+ * them (used by restore too).
+ */
+int ftest_step1(struct transport *t, struct ftest_result *res, bool keep_going);
+
+#endif

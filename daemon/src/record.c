@@ -1,0 +1,550 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The calibration record and its text format (daemon/RECORD.md).
+ *
+ * Writing is canonical: one key per line in a fixed order, then a crc32
+ * line over every byte before it. Reading is strict: every key exactly
+ * once, nothing unknown, every value in range, the checksum right; a
+ * record that fails any of this is never used.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "record.h"
+
+#define Q16_ONE			65536
+#define MICRO			1000000
+#define MILLI			1000
+/* Level means are kept to 1e-6 LSB in the file: Q16 round-trips exactly */
+#define LEVEL_MEAN_MAX_MICRO	(2048LL * MICRO)
+#define T_LEVEL_MIN_MDEGC	(-30000)
+#define T_LEVEL_MAX_MDEGC	85000
+#define LINE_MAX_LEN		256
+
+enum record_key {
+	KEY_FORMAT,
+	KEY_CHIP,
+	KEY_CREATED,
+	KEY_EEPROM,
+	KEY_DAC,
+	KEY_LEVEL_MEAN,
+	KEY_T_LEVEL,
+	KEY_GRAVITY,
+	KEY_SAMPLES,
+	KEY_LPF,
+	KEY_CRC32,
+	KEY_COUNT,
+};
+
+static const char *const key_names[KEY_COUNT] = {
+	[KEY_FORMAT] = "format",
+	[KEY_CHIP] = "chip",
+	[KEY_CREATED] = "created",
+	[KEY_EEPROM] = "eeprom",
+	[KEY_DAC] = "dac",
+	[KEY_LEVEL_MEAN] = "level_mean",
+	[KEY_T_LEVEL] = "t_level",
+	[KEY_GRAVITY] = "gravity",
+	[KEY_SAMPLES] = "samples",
+	[KEY_LPF] = "lpf",
+	[KEY_CRC32] = "crc32",
+};
+
+uint64_t record_fingerprint(const uint8_t eeprom[AS9888_EEPROM_LEN])
+{
+	uint64_t h = 0xcbf29ce484222325ULL;
+	int i;
+
+	for (i = 0; i < AS9888_EEPROM_LEN; i++) {
+		h ^= eeprom[i];
+		h *= 0x100000001b3ULL;
+	}
+
+	return h;
+}
+
+/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32()) */
+uint32_t record_crc32(const void *data, size_t len)
+{
+	const uint8_t *p = data;
+	uint32_t crc = 0xffffffffu;
+	int bit;
+
+	while (len--) {
+		crc ^= *p++;
+		for (bit = 0; bit < 8; bit++)
+			crc = (crc >> 1) ^ (0xedb88320u & -(crc & 1));
+	}
+
+	return ~crc;
+}
+
+static int fail(char *err, size_t errlen, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+static int fail(char *err, size_t errlen, const char *fmt, ...)
+{
+	va_list ap;
+
+	if (err && errlen) {
+		va_start(ap, fmt);
+		vsnprintf(err, errlen, fmt, ap);
+		va_end(ap);
+	}
+
+	return -EINVAL;
+}
+
+int record_validate(const struct calib_record *rec, char *err, size_t errlen)
+{
+	struct as9888_eeprom ee;
+	int axis, vertical = 0;
+
+	if (as9888_eeprom_decode(rec->eeprom, &ee))
+		return fail(err, errlen, "EEPROM data is not usable (errors 0x%x)",
+			    ee.errors);
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		int64_t micro = (int64_t)rec->level_mean_q16[axis] * MICRO / Q16_ONE;
+
+		if (!as9888_dac_valid(rec->dac[axis]))
+			return fail(err, errlen, "DAC value 0x%02x of axis %c is outside 0..67 and 128..195",
+				    rec->dac[axis], "XYZ"[axis]);
+		if (micro > LEVEL_MEAN_MAX_MICRO || micro < -LEVEL_MEAN_MAX_MICRO)
+			return fail(err, errlen, "level mean of axis %c is beyond +-2048 LSB",
+				    "XYZ"[axis]);
+		if (rec->gravity[axis] < -1 || rec->gravity[axis] > 1)
+			return fail(err, errlen, "gravity component %d is not -1, 0 or 1",
+				    rec->gravity[axis]);
+		vertical += rec->gravity[axis] != 0;
+	}
+	if (vertical != 1)
+		return fail(err, errlen, "gravity must point along exactly one axis");
+	if (rec->t_level_mdegc < T_LEVEL_MIN_MDEGC ||
+	    rec->t_level_mdegc > T_LEVEL_MAX_MDEGC)
+		return fail(err, errlen, "level-test temperature %.3f degC is outside -30..85 degC",
+			    rec->t_level_mdegc / 1000.0);
+	if (rec->samples < AS9888_SAMPLES_MIN || rec->samples > AS9888_SAMPLES_MAX)
+		return fail(err, errlen, "sample count %u is outside %d..%d",
+			    rec->samples, AS9888_SAMPLES_MIN, AS9888_SAMPLES_MAX);
+	if (rec->created < 0)
+		return fail(err, errlen, "creation time is before 1970");
+
+	return 0;
+}
+
+/* Print a fixed-point value with @decimals exact decimals */
+static int print_fixed(char *buf, size_t size, int64_t value, int64_t scale,
+		       int decimals)
+{
+	uint64_t mag = value < 0 ? -(uint64_t)value : (uint64_t)value;
+
+	return snprintf(buf, size, "%s%llu.%0*llu", value < 0 ? "-" : "",
+			(unsigned long long)(mag / scale), decimals,
+			(unsigned long long)(mag % scale));
+}
+
+static int64_t q16_to_micro(int32_t q16)
+{
+	int64_t num = (int64_t)q16 * MICRO;
+
+	/* round half away from zero; exact inverse of micro_to_q16() */
+	return (num + (num < 0 ? -Q16_ONE / 2 : Q16_ONE / 2)) / Q16_ONE;
+}
+
+static int32_t micro_to_q16(int64_t micro)
+{
+	int64_t num = micro * Q16_ONE;
+
+	return (int32_t)((num + (num < 0 ? -MICRO / 2 : MICRO / 2)) / MICRO);
+}
+
+int record_format(const struct calib_record *rec, char *buf, size_t size)
+{
+	char mean[AS9888_AXES][32], t_level[32], created[32];
+	const uint8_t *e = rec->eeprom;
+	time_t when = (time_t)rec->created;
+	struct tm tm;
+	size_t len;
+	int axis, n;
+
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		print_fixed(mean[axis], sizeof(mean[axis]),
+			    q16_to_micro(rec->level_mean_q16[axis]), MICRO, 6);
+	print_fixed(t_level, sizeof(t_level), rec->t_level_mdegc, MILLI, 3);
+	if (!gmtime_r(&when, &tm) ||
+	    !strftime(created, sizeof(created), "%Y-%m-%dT%H:%M:%SZ", &tm))
+		return -EINVAL;
+
+	n = snprintf(buf, size,
+		     "# AS9888 accelerometer calibration, written by as9888-calibd.\n"
+		     "# Do not edit: the crc32 line covers every byte above it.\n"
+		     "format = %s %d\n"
+		     "chip = %016llx\n"
+		     "created = %s\n"
+		     "eeprom = %02x %02x %02x %02x %02x %02x %02x %02x %02x %02x %02x"
+		     " %02x %02x %02x %02x %02x %02x %02x %02x %02x %02x\n"
+		     "dac = %02x %02x %02x\n"
+		     "level_mean = %s %s %s\n"
+		     "t_level = %s\n"
+		     "gravity = %d %d %d\n"
+		     "samples = %u\n"
+		     "lpf = %s\n",
+		     RECORD_FORMAT_NAME, RECORD_FORMAT_VERSION,
+		     (unsigned long long)record_fingerprint(e), created,
+		     e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9],
+		     e[10], e[11], e[12], e[13], e[14], e[15], e[16], e[17],
+		     e[18], e[19], e[20],
+		     rec->dac[0], rec->dac[1], rec->dac[2],
+		     mean[0], mean[1], mean[2], t_level,
+		     rec->gravity[0], rec->gravity[1], rec->gravity[2],
+		     rec->samples, rec->lpf ? "on" : "off");
+	if (n < 0 || (size_t)n >= size)
+		return -ENOSPC;
+	len = (size_t)n;
+
+	n = snprintf(buf + len, size - len, "crc32 = %08x\n",
+		     record_crc32(buf, len));
+	if (n < 0 || (size_t)n >= size - len)
+		return -ENOSPC;
+
+	return (int)(len + (size_t)n);
+}
+
+/* A cursor over one value: whitespace-separated tokens */
+struct cursor {
+	const char *p;
+	const char *end;
+};
+
+static bool next_token(struct cursor *c, const char **tok, size_t *len)
+{
+	while (c->p < c->end && (*c->p == ' ' || *c->p == '\t'))
+		c->p++;
+	if (c->p == c->end)
+		return false;
+	*tok = c->p;
+	while (c->p < c->end && *c->p != ' ' && *c->p != '\t')
+		c->p++;
+	*len = (size_t)(c->p - *tok);
+
+	return true;
+}
+
+static bool at_end(struct cursor *c)
+{
+	const char *tok;
+	size_t len;
+
+	return !next_token(c, &tok, &len);
+}
+
+static int hex_digit(char ch)
+{
+	if (ch >= '0' && ch <= '9')
+		return ch - '0';
+	if (ch >= 'a' && ch <= 'f')
+		return ch - 'a' + 10;
+	return -1;
+}
+
+/* exactly @digits lower-case hex digits */
+static bool parse_hex_u64(struct cursor *c, size_t digits, uint64_t *out)
+{
+	const char *tok;
+	size_t len, i;
+
+	if (!next_token(c, &tok, &len) || len != digits)
+		return false;
+	*out = 0;
+	for (i = 0; i < len; i++) {
+		int d = hex_digit(tok[i]);
+
+		if (d < 0)
+			return false;
+		*out = *out << 4 | (uint64_t)d;
+	}
+
+	return true;
+}
+
+/* exactly two lower-case hex digits */
+static bool parse_hex_byte(struct cursor *c, uint8_t *out)
+{
+	uint64_t v;
+
+	if (!parse_hex_u64(c, 2, &v))
+		return false;
+	*out = (uint8_t)v;
+
+	return true;
+}
+
+/*
+ * A decimal with exactly @decimals digits after the point (0: an integer
+ * without a point), in [@lo, @hi] after scaling by 10^@decimals.
+ */
+static bool parse_fixed(struct cursor *c, int decimals, int64_t lo, int64_t hi,
+			int64_t *out)
+{
+	const char *tok, *p, *end;
+	bool neg = false;
+	int64_t v = 0;
+	size_t len;
+	int digits = 0, frac = -1;
+
+	if (!next_token(c, &tok, &len))
+		return false;
+	p = tok;
+	end = tok + len;
+	if (p < end && *p == '-') {
+		neg = true;
+		p++;
+	}
+	if (p == end)
+		return false;
+	for (; p < end; p++) {
+		if (*p == '.' && frac < 0 && digits > 0) {
+			frac = 0;
+			continue;
+		}
+		if (*p < '0' || *p > '9')
+			return false;
+		if (++digits > 15)
+			return false;
+		v = v * 10 + (*p - '0');
+		if (frac >= 0)
+			frac++;
+	}
+	if (decimals ? frac != decimals : frac >= 0)
+		return false;
+	if (neg)
+		v = -v;
+	if (v < lo || v > hi)
+		return false;
+	*out = v;
+
+	return true;
+}
+
+static bool parse_created(struct cursor *c, int64_t *out)
+{
+	const char *tok;
+	char text[32];
+	struct tm tm;
+	size_t len;
+	char *end;
+	time_t t;
+
+	if (!next_token(c, &tok, &len) || len != 20)
+		return false;
+	memcpy(text, tok, len);
+	text[len] = '\0';
+	memset(&tm, 0, sizeof(tm));
+	end = strptime(text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+	if (!end || *end)
+		return false;
+	t = timegm(&tm);
+	if (t == (time_t)-1)
+		return false;
+	*out = t;
+
+	return true;
+}
+
+static bool parse_value(enum record_key key, struct cursor *c,
+			struct calib_record *rec, uint64_t *chip)
+{
+	const char *tok;
+	int64_t v;
+	size_t len;
+	int i;
+
+	switch (key) {
+	case KEY_FORMAT:
+		if (!next_token(c, &tok, &len) ||
+		    len != strlen(RECORD_FORMAT_NAME) ||
+		    memcmp(tok, RECORD_FORMAT_NAME, len))
+			return false;
+		return parse_fixed(c, 0, RECORD_FORMAT_VERSION,
+				   RECORD_FORMAT_VERSION, &v);
+	case KEY_CHIP:
+		return parse_hex_u64(c, 16, chip);
+	case KEY_CREATED:
+		return parse_created(c, &rec->created);
+	case KEY_EEPROM:
+		for (i = 0; i < AS9888_EEPROM_LEN; i++)
+			if (!parse_hex_byte(c, &rec->eeprom[i]))
+				return false;
+		return true;
+	case KEY_DAC:
+		for (i = 0; i < AS9888_AXES; i++)
+			if (!parse_hex_byte(c, &rec->dac[i]))
+				return false;
+		return true;
+	case KEY_LEVEL_MEAN:
+		for (i = 0; i < AS9888_AXES; i++) {
+			if (!parse_fixed(c, 6, -LEVEL_MEAN_MAX_MICRO,
+					 LEVEL_MEAN_MAX_MICRO, &v))
+				return false;
+			rec->level_mean_q16[i] = micro_to_q16(v);
+		}
+		return true;
+	case KEY_T_LEVEL:
+		if (!parse_fixed(c, 3, T_LEVEL_MIN_MDEGC, T_LEVEL_MAX_MDEGC, &v))
+			return false;
+		rec->t_level_mdegc = (int32_t)v;
+		return true;
+	case KEY_GRAVITY:
+		for (i = 0; i < AS9888_AXES; i++) {
+			if (!parse_fixed(c, 0, -1, 1, &v))
+				return false;
+			rec->gravity[i] = (int8_t)v;
+		}
+		return true;
+	case KEY_SAMPLES:
+		if (!parse_fixed(c, 0, AS9888_SAMPLES_MIN, AS9888_SAMPLES_MAX, &v))
+			return false;
+		rec->samples = (uint32_t)v;
+		return true;
+	case KEY_LPF:
+		if (!next_token(c, &tok, &len))
+			return false;
+		if (len == 2 && !memcmp(tok, "on", 2))
+			rec->lpf = true;
+		else if (len == 3 && !memcmp(tok, "off", 3))
+			rec->lpf = false;
+		else
+			return false;
+		return true;
+	default:
+		return false;
+	}
+}
+
+static const char *const value_help[KEY_COUNT] = {
+	[KEY_FORMAT] = "\"" RECORD_FORMAT_NAME " 1\"",
+	[KEY_CHIP] = "16 hex digits",
+	[KEY_CREATED] = "YYYY-MM-DDTHH:MM:SSZ",
+	[KEY_EEPROM] = "21 two-digit hex bytes",
+	[KEY_DAC] = "3 two-digit hex bytes",
+	[KEY_LEVEL_MEAN] = "3 numbers with 6 decimals within +-2048",
+	[KEY_T_LEVEL] = "a number with 3 decimals within -30..85",
+	[KEY_GRAVITY] = "3 integers -1, 0 or 1",
+	[KEY_SAMPLES] = "an integer 10..4096",
+	[KEY_LPF] = "on or off",
+	[KEY_CRC32] = "8 hex digits",
+};
+
+int record_parse(const char *text, size_t len, struct calib_record *rec,
+		 char *err, size_t errlen)
+{
+	bool seen[KEY_COUNT] = { false };
+	const char *line = text, *end = text + len;
+	uint64_t chip = 0;
+	uint32_t crc;
+	int lineno = 0, k;
+
+	memset(rec, 0, sizeof(*rec));
+	if (len > RECORD_MAX_SIZE)
+		return fail(err, errlen, "%zu bytes: too large for a record", len);
+
+	while (line < end) {
+		const char *nl = memchr(line, '\n', (size_t)(end - line));
+		const char *eq, *key_end;
+		struct cursor c;
+		size_t key_len;
+		enum record_key key;
+
+		lineno++;
+		if (!nl)
+			return fail(err, errlen, "line %d: not terminated by a newline",
+				    lineno);
+		if (nl - line > LINE_MAX_LEN)
+			return fail(err, errlen, "line %d: too long", lineno);
+		if (memchr(line, '\0', (size_t)(nl - line)))
+			return fail(err, errlen, "line %d: contains a NUL byte", lineno);
+		if (seen[KEY_CRC32])
+			return fail(err, errlen, "line %d: text after the crc32 line",
+				    lineno);
+		if (line == nl || *line == '#') {
+			line = nl + 1;
+			continue;
+		}
+
+		eq = memchr(line, '=', (size_t)(nl - line));
+		if (!eq)
+			return fail(err, errlen, "line %d: expected \"key = value\"",
+				    lineno);
+		key_end = eq;
+		while (key_end > line && key_end[-1] == ' ')
+			key_end--;
+		key_len = (size_t)(key_end - line);
+		for (k = 0; k < KEY_COUNT; k++)
+			if (strlen(key_names[k]) == key_len &&
+			    !memcmp(key_names[k], line, key_len))
+				break;
+		if (k == KEY_COUNT)
+			return fail(err, errlen, "line %d: unknown key \"%.*s\"",
+				    lineno, (int)(key_len > 32 ? 32 : key_len), line);
+		key = (enum record_key)k;
+		if (seen[key])
+			return fail(err, errlen, "line %d: %s given twice", lineno,
+				    key_names[key]);
+		seen[key] = true;
+
+		c.p = eq + 1;
+		c.end = nl;
+		if (key == KEY_CRC32) {
+			uint64_t value;
+
+			if (!parse_hex_u64(&c, 8, &value) || !at_end(&c))
+				return fail(err, errlen, "line %d: crc32 must be %s",
+					    lineno, value_help[key]);
+			crc = (uint32_t)value;
+			if (crc != record_crc32(text, (size_t)(line - text)))
+				return fail(err, errlen, "line %d: checksum mismatch: the record is corrupt",
+					    lineno);
+		} else if (!parse_value(key, &c, rec, &chip) || !at_end(&c)) {
+			return fail(err, errlen, "line %d: %s must be %s", lineno,
+				    key_names[key], value_help[key]);
+		}
+		line = nl + 1;
+	}
+
+	for (k = 0; k < KEY_COUNT; k++)
+		if (!seen[k])
+			return fail(err, errlen, "%s is missing%s", key_names[k],
+				    k == KEY_CRC32 ? " (truncated record?)" : "");
+	if (chip != record_fingerprint(rec->eeprom))
+		return fail(err, errlen, "chip %016llx does not match the EEPROM data (%016llx)",
+			    (unsigned long long)chip,
+			    (unsigned long long)record_fingerprint(rec->eeprom));
+
+	return record_validate(rec, err, errlen);
+}
+
+int record_level_offsets(const struct calib_record *rec,
+			 const struct as9888_eeprom *ee,
+			 int32_t ot_l_q16[AS9888_AXES])
+{
+	int axis, ret;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		int32_t st;
+
+		ret = as9888_sensitivity_q16(&ee->axis[axis], ee->t_rt_mdegc,
+					     rec->t_level_mdegc, &st);
+		if (!ret)
+			ret = as9888_offset_level_q16(rec->level_mean_q16[axis], st,
+						      rec->gravity[axis],
+						      &ot_l_q16[axis]);
+		if (ret)
+			return ret;
+	}
+
+	return 0;
+}
