@@ -74,31 +74,21 @@ static const struct transport_ops sim_ops = {
 	.destroy = sim_destroy,
 };
 
-int backend_sim_open(const struct backend_sim_opts *opts,
-		     struct transport **out, char *err, size_t errlen)
+int backend_sim_open_unit(const struct as9888_unit *unit, bool virtual_clock,
+			  struct transport **out, char *err, size_t errlen)
 {
 	struct as9888_sim_opts sim_opts = {
-		.clock = opts->virtual_clock ? AS9888_SIM_CLOCK_VIRTUAL :
-					       AS9888_SIM_CLOCK_REAL,
+		.clock = virtual_clock ? AS9888_SIM_CLOCK_VIRTUAL :
+					 AS9888_SIM_CLOCK_REAL,
 	};
-	struct as9888_unit unit;
 	struct sim_transport *st;
-	int ret;
-
-	as9888_unit_default(&unit);
-	if (opts->unit_path) {
-		ret = as9888_sim_load_unit_file(opts->unit_path, &unit, err,
-						errlen);
-		if (ret)
-			return ret;
-	}
 
 	st = calloc(1, sizeof(*st));
 	if (!st) {
 		snprintf(err, errlen, "simulator: out of memory");
 		return -ENOMEM;
 	}
-	st->sim = as9888_sim_new(&unit, &sim_opts);
+	st->sim = as9888_sim_new(unit, &sim_opts);
 	if (!st->sim) {
 		free(st);
 		snprintf(err, errlen, "simulator: cannot create the chip model");
@@ -109,6 +99,24 @@ int backend_sim_open(const struct backend_sim_opts *opts,
 	*out = &st->base;
 
 	return 0;
+}
+
+int backend_sim_open(const struct backend_sim_opts *opts,
+		     struct transport **out, char *err, size_t errlen)
+{
+	struct as9888_unit unit;
+	int ret;
+
+	as9888_unit_default(&unit);
+	if (opts->unit_path) {
+		ret = as9888_sim_load_unit_file(opts->unit_path, &unit, err,
+						errlen);
+		if (ret)
+			return ret;
+	}
+
+	return backend_sim_open_unit(&unit, opts->virtual_clock, out, err,
+				     errlen);
 }
 
 struct as9888_sim *backend_sim_get(struct transport *t)

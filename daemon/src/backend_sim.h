@@ -23,6 +23,10 @@ struct backend_sim_opts {
 /* Returns 0 and the transport in @out, or -errno with a message in @err. */
 int backend_sim_open(const struct backend_sim_opts *opts,
 		     struct transport **out, char *err, size_t errlen);
+struct as9888_unit;
+/* The same with a unit already parsed */
+int backend_sim_open_unit(const struct as9888_unit *unit, bool virtual_clock,
+			  struct transport **out, char *err, size_t errlen);
 /* The simulator behind a transport made by backend_sim_open(). */
 struct as9888_sim *backend_sim_get(struct transport *t);
 

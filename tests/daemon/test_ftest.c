@@ -1,0 +1,349 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The factory test engine against the simulated chip (virtual time): a
+ * healthy unit passes in every posture; every fault of datasheet section 8
+ * and every limit of the application note fails at its own step.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "as9888_sim.h"
+#include "as9888_unit.h"
+#include "backend_sim.h"
+#include "ftest.h"
+
+static void run_unit(const char *text, const struct ftest_opts *opts,
+		     struct ftest_result *res)
+{
+	struct as9888_unit_error uerr;
+	struct as9888_unit unit;
+	struct ftest_opts o;
+	struct transport *t;
+	char err[256];
+
+	as9888_unit_default(&unit);
+	if (as9888_unit_parse(text, strlen(text), &unit, &uerr))
+		fail_msg("unit line %u: %s", uerr.line, uerr.msg);
+	assert_int_equal(backend_sim_open_unit(&unit, true, &t, err, sizeof(err)), 0);
+	if (opts) {
+		o = *opts;
+	} else {
+		ftest_opts_default(&o);
+	}
+	memset(res, 0, sizeof(*res));
+	ftest_run(t, &o, res);
+	transport_destroy(t);
+}
+
+/* The first failed judgment is at @step; with @name_part, its name says so */
+static void expect_failure(const char *text, const struct ftest_opts *o,
+			   const char *step, const char *name_part)
+{
+	struct ftest_result res;
+	const struct judgment *j;
+
+	run_unit(text, o, &res);
+	j = report_first_failure(&res.report);
+	if (!j) {
+		report_print_text(stderr, &res.report);
+		fail_msg("unit passed, expected a failure at %s", step);
+	}
+	if (strcmp(j->step, step) ||
+	    (name_part && !strstr(j->name, name_part) && !strstr(j->measured, name_part))) {
+		report_print_text(stderr, &res.report);
+		fail_msg("failed at %s (%s: %s), expected %s (%s)", j->step,
+			 j->name, j->measured, step, name_part ? name_part : "");
+	}
+	assert_false(res.have_calibration);
+	ftest_result_free(&res);
+}
+
+static void expect_pass(const char *text, const struct ftest_opts *o,
+			struct ftest_result *res)
+{
+	run_unit(text, o, res);
+	if (report_first_failure(&res->report)) {
+		report_print_text(stderr, &res->report);
+		fail_msg("unit failed");
+	}
+	assert_true(res->have_calibration);
+}
+
+static void healthy_unit_passes(void **state)
+{
+	struct ftest_result res;
+	int axis;
+
+	expect_pass("", NULL, &res);
+	/* steps of every phase were judged */
+	assert_true(res.report.count > 40);
+	assert_string_equal(res.report.items[0].step, "1-4");
+	assert_string_equal(res.report.items[res.report.count - 1].step, "3-47");
+	/* offset 0 at 25 degC with the factory DAC: DACopt = EEPROM DAC */
+	assert_memory_equal(res.rec.dac, ((u8[]){ 0x0d, 0x8f, 0x8c }), 3);
+	assert_memory_equal(res.rec.gravity, ((s8[]){ 0, 0, -1 }), 3);
+	assert_int_equal(res.rec.t_level_mdegc, 25000);
+	assert_int_equal(res.rec.samples, 10);
+	for (axis = 0; axis < 3; axis++)
+		assert_true(res.offset_q16[axis] > -2 * 65536 &&
+			    res.offset_q16[axis] < 2 * 65536);
+	/* vertical axis reads St(25 degC) of Z: 259 * (1 - 0.00165625 * 1.25) */
+	assert_true(res.rec.level_mean_q16[2] > 257 * 65536 &&
+		    res.rec.level_mean_q16[2] < 260 * 65536);
+	ftest_result_free(&res);
+}
+
+/* The DAC optimisation cancels a real offset: Ot_L after the DAC change
+ * is within half a DAC step (plus noise) of zero */
+static void offset_is_cancelled(void **state)
+{
+	struct ftest_result res;
+	int axis;
+
+	expect_pass("offset = 110 -80 60\nnoise = 0.5\n", NULL, &res);
+	for (axis = 0; axis < 3; axis++) {
+		s32 half_step = as9888_dac_step_q16(res.ee.axis[axis].ga) / 2;
+
+		assert_true(res.offset_q16[axis] <= half_step + 65536 &&
+			    res.offset_q16[axis] >= -half_step - 65536);
+	}
+	/* X: gain 28, 110 LSB -> rint(44 / 2048 * 110) = 2 codes: lin -13 - 2 */
+	assert_int_equal(as9888_dac2lin(0x1c, res.rec.dac[0]), -15);
+	ftest_result_free(&res);
+}
+
+static void every_posture_passes(void **state)
+{
+	static const struct {
+		const char *up;
+		s8 g[3];
+	} postures[] = {
+		{ "up = 0 0 1\n", { 0, 0, -1 } },
+		{ "up = 0 0 -1\n", { 0, 0, 1 } },
+		{ "up = 1 0 0\n", { -1, 0, 0 } },
+		{ "up = -1 0 0\n", { 1, 0, 0 } },
+		{ "up = 0 1 0\n", { 0, -1, 0 } },
+		{ "up = 0 -1 0\n", { 0, 1, 0 } },
+	};
+	unsigned int i;
+
+	for (i = 0; i < sizeof(postures) / sizeof(postures[0]); i++) {
+		struct ftest_result res;
+		struct ftest_opts o;
+
+		expect_pass(postures[i].up, NULL, &res);
+		assert_memory_equal(res.rec.gravity, postures[i].g, 3);
+		ftest_result_free(&res);
+
+		/* and with the posture given instead of detected */
+		ftest_opts_default(&o);
+		o.gravity_given = true;
+		memcpy(o.gravity, postures[i].g, 3);
+		expect_pass(postures[i].up, &o, &res);
+		ftest_result_free(&res);
+	}
+}
+
+static void wrong_gravity_given_fails(void **state)
+{
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	o.gravity_given = true;
+	memcpy(o.gravity, ((s8[]){ 0, 0, 1 }), 3);
+	expect_failure("", &o, "3-23", "other way");
+	memcpy(o.gravity, ((s8[]){ -1, 0, 0 }), 3);
+	expect_failure("", &o, "3-23", "not level");
+}
+
+/* D8: 35 degrees of tilt: a horizontal axis reads more than St/2 */
+static void tilted_unit_fails(void **state)
+{
+	expect_failure("up = 0.574 0 0.819\n", NULL, "3-23", "horizontal axis");
+	/* 20 degrees is still level in the sense of D8 */
+	struct ftest_result res;
+
+	expect_pass("up = 0.342 0 0.940\n", NULL, &res);
+	ftest_result_free(&res);
+}
+
+/* D6: the optimum lies beyond the DAC range */
+static void offset_beyond_dac_range(void **state)
+{
+	/*
+	 * X factory DAC at +67 codes; a -100 LSB offset needs two more
+	 * (the offset must stay below St/2 for the unit to count as level)
+	 */
+	expect_failure("eeprom = 9a 71 15 5c 80 85 7b 1c 63 a2 38 e6 9c c3 8f 8c 04 65 c3 88 50\n"
+		       "offset = -100 0 0\n", NULL, "3-23", "beyond DAC range");
+}
+
+static void noisy_unit_fails_fluctuation(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+
+	expect_failure("noise = 12\nseed = 7\n", NULL, "3-20", "fluctuation");
+	/* the same unit passes a looser, environment-specific limit */
+	ftest_opts_default(&o);
+	o.fluctuation = 200;
+	expect_pass("noise = 12\nseed = 7\n", &o, &res);
+	ftest_result_free(&res);
+}
+
+/* Note 2: N from the pilot noise; too noisy fails */
+static void permissible_error(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	o.fluctuation = 4095;
+	o.permissible_error_q16 = 65536;	/* 1 LSB */
+	expect_pass("noise = 4\nseed = 3\n", &o, &res);
+	/* sigma about 4: N about 16, never fewer than 10 */
+	assert_true(res.rec.samples >= 10 && res.rec.samples <= 40);
+	ftest_result_free(&res);
+
+	o.permissible_error_q16 = 65536 / 100;	/* 0.01 LSB */
+	expect_failure("noise = 4\nseed = 3\n", &o, "3-7", "too noisy");
+}
+
+static void lpf_run(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	o.lpf = true;
+	expect_pass("", &o, &res);
+	assert_true(res.rec.lpf);
+	ftest_result_free(&res);
+}
+
+/* Note 4b: a temperature that moves during averaging is waited out, then fails */
+static void drifting_temperature(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+
+	/* slow drift: passes, t_L is the measured one */
+	expect_pass("temperature = 30\ntemperature_drift = 0.5\n", NULL, &res);
+	assert_true(res.rec.t_level_mdegc >= 29375 && res.rec.t_level_mdegc <= 31250);
+	ftest_result_free(&res);
+
+	ftest_opts_default(&o);
+	o.stable_timeout_ms = 300;
+	expect_failure("temperature = -20\ntemperature_drift = 100\n", &o, "3-5",
+		       "temperature stable");
+}
+
+static void temperature_out_of_spec(void **state)
+{
+	/* 90 degC: TMPS below 0x28 */
+	expect_failure("temperature = 90\n", NULL, "3-5", "TMPS");
+}
+
+/* Every fault of datasheet section 8 at its step */
+static void faults(void **state)
+{
+	expect_failure("fault = wia\n", NULL, "1-4", "WIA");
+	expect_failure("fault = rstn_open\n", NULL, "1-2", "RSTN");
+	expect_failure("fault = eeprom_blank\n", NULL, "1-27", "blank");
+	expect_failure("fault = int1_open\n", NULL, "2-4", "INT1");
+	expect_failure("fault = int2_open\n", NULL, "2-4", "INT2");
+	expect_failure("fault = no_drdy\n", NULL, "2-4", "INT1");
+	expect_failure("fault = hofl\n", NULL, "2-7", "overflow");
+	expect_failure("fault = selftest_weak\n", NULL, "2-21", "self-test Z");
+	expect_failure("fault = saturate_z\n", NULL, "3-16", "maximum of Z");
+	expect_failure("fault = stuck_x\n", NULL, "3-23", "not level");
+}
+
+static void nak_fault_reports_bus_error(void **state)
+{
+	struct ftest_result res;
+	const struct judgment *j;
+
+	run_unit("fault = nak\n", NULL, &res);
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_non_null(strstr(j->measured, "bus transfer failed"));
+	assert_false(res.have_calibration);
+	ftest_result_free(&res);
+}
+
+/* Without INT1, DRDY polling carries the test (keep-going after 2-4) */
+static void keep_going_polls_drdy(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	o.keep_going = true;
+	run_unit("fault = int1_open\n", &o, &res);
+	assert_string_equal(report_first_failure(&res.report)->step, "2-4");
+	assert_true(res.have_calibration);
+	assert_string_equal(res.report.items[res.report.count - 1].step, "3-47");
+	ftest_result_free(&res);
+}
+
+/* no_drdy with keep-going: the measurement timeout ends the test */
+static void no_drdy_times_out(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+	size_t i;
+	bool timed_out = false;
+
+	ftest_opts_default(&o);
+	o.keep_going = true;
+	run_unit("fault = no_drdy\n", &o, &res);
+	for (i = 0; i < res.report.count; i++)
+		if (strstr(res.report.items[i].name, "measurement completes"))
+			timed_out = res.report.items[i].result == JUDGMENT_FAIL;
+	assert_true(timed_out);
+	assert_false(res.have_calibration);
+	ftest_result_free(&res);
+}
+
+/* The same seed gives the same calibration */
+static void deterministic(void **state)
+{
+	struct ftest_result a, b;
+
+	expect_pass("noise = 3\nseed = 99\n", NULL, &a);
+	expect_pass("noise = 3\nseed = 99\n", NULL, &b);
+	assert_memory_equal(a.rec.level_mean_q16, b.rec.level_mean_q16,
+			    sizeof(a.rec.level_mean_q16));
+	ftest_result_free(&a);
+	ftest_result_free(&b);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(healthy_unit_passes),
+		cmocka_unit_test(offset_is_cancelled),
+		cmocka_unit_test(every_posture_passes),
+		cmocka_unit_test(wrong_gravity_given_fails),
+		cmocka_unit_test(tilted_unit_fails),
+		cmocka_unit_test(offset_beyond_dac_range),
+		cmocka_unit_test(noisy_unit_fails_fluctuation),
+		cmocka_unit_test(permissible_error),
+		cmocka_unit_test(lpf_run),
+		cmocka_unit_test(drifting_temperature),
+		cmocka_unit_test(temperature_out_of_spec),
+		cmocka_unit_test(faults),
+		cmocka_unit_test(nak_fault_reports_bus_error),
+		cmocka_unit_test(keep_going_polls_drdy),
+		cmocka_unit_test(no_drdy_times_out),
+		cmocka_unit_test(deterministic),
+	};
+
+	return cmocka_run_group_tests_name("ftest", tests, NULL, NULL);
+}
