@@ -1386,6 +1386,12 @@ static void test_accel_gain_register(void **state)
 	check_accel(&u, 0);
 	measure(0, &s1);
 	assert_true(s1.a[2] > s0.a[2] + 40);
+	/* X polarity flipped against EAXGA: the DAC code -13 becomes +13,
+	 * 26 codes of 2048 / 44 LSB */
+	wr(AS9888_REG_AXGA, rd(AS9888_REG_AXGA) ^ 0x40);
+	check_accel(&u, 0);
+	measure(0, &s1);
+	assert_true(fabs(s1.a[0] - s0.a[0] - 26 * 2048.0 / 44) <= 1.0);
 }
 
 static void test_accel_untrimmed(void **state)
@@ -1434,6 +1440,35 @@ static void test_accel_clamped(void **state)
 	measure(0, &s);
 	assert_int_equal(s.a[0], 2047);
 	assert_int_equal(s.a[1], -2048);
+}
+
+/* rint(): ties to even (D5), in the accelerometer and magnetometer */
+static void test_rounding_ties_to_even(void **state)
+{
+	static const struct {
+		s32 off_mlsb;
+		s16 expect;
+	} c[] = {
+		{ 500, 0 }, { 1500, 2 }, { 2500, 2 }, { -500, 0 },
+		{ -1500, -2 }, { -2500, -2 }, { 2501, 3 }, { 2499, 2 },
+	};
+	struct as9888_unit u = unit_default();
+	struct sample s;
+	unsigned int i;
+
+	u.noise_mlsb = 0;
+	u.up[0] = 1000000;	/* X up: Y and Z see no gravity */
+	u.up[2] = 0;
+	u.eeprom[4] = 0x80;	/* EHCX = 128: 300 nT per LSB exactly */
+	for (i = 0; i < sizeof(c) / sizeof(c[0]); i++) {
+		u.offset_mlsb[1] = c[i].off_mlsb;
+		u.field_nt[0] = c[i].off_mlsb * 3 / 10;	/* same in LSB */
+		ready(&u);
+		measure(AS9888_SLCT2_MEN_MSK, &s);
+		assert_int_equal(s.a[1], c[i].expect);
+		if (c[i].off_mlsb % 10 == 0)	/* field exact in nT */
+			assert_int_equal(s.h[0], c[i].expect);
+	}
 }
 
 /* ---- magnetometer ---- */
@@ -1931,6 +1966,7 @@ int main(void)
 		cmocka_unit_test(test_accel_untrimmed),
 		cmocka_unit_test(test_accel_ref3_wrong),
 		cmocka_unit_test(test_accel_clamped),
+		cmocka_unit_test(test_rounding_ties_to_even),
 		cmocka_unit_test(test_mag_values),
 		cmocka_unit_test(test_mag_self_test),
 		cmocka_unit_test(test_mag_self_test_keeps_accel),
