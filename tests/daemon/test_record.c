@@ -1,0 +1,285 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The calibration record: format/parse round trip, every corruption and
+ * truncation refused, every field validated, and the file helpers
+ * (permissions, no temporary left, symlinks refused).
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "atomic_file.h"
+#include "record.h"
+
+static const u8 example[AS9888_EEPROM_LEN] = {
+	0x9a, 0x71, 0x15, 0x5c, 0x80, 0x85, 0x7b, 0x1c, 0x63, 0xa2, 0x38,
+	0xe6, 0x9c, 0x0d, 0x8f, 0x8c, 0x04, 0x65, 0xc3, 0x88, 0x50,
+};
+
+static void sample_record(struct calib_record *rec)
+{
+	memset(rec, 0, sizeof(*rec));
+	memcpy(rec->eeprom, example, sizeof(example));
+	rec->dac[0] = 0x0f;
+	rec->dac[1] = 0x8e;
+	rec->dac[2] = 0x8c;
+	rec->level_mean_q16[0] = -26214;	/* -0.4 */
+	rec->level_mean_q16[1] = 6553;
+	rec->level_mean_q16[2] = 258 * 65536 + 6554;
+	rec->t_level_mdegc = 24583;
+	rec->gravity[2] = -1;
+	rec->samples = 16;
+	rec->lpf = true;
+	rec->created = 1795305600;	/* 2026-11-22T00:00:00Z */
+}
+
+static int format(const struct calib_record *rec, char *buf, size_t size)
+{
+	int len = record_format(rec, buf, size);
+
+	assert_true(len > 0);
+	return len;
+}
+
+static void round_trip(void **state)
+{
+	struct calib_record rec, back;
+	char buf[RECORD_MAX_SIZE], err[256];
+	int len, q;
+
+	sample_record(&rec);
+	len = format(&rec, buf, sizeof(buf));
+	assert_int_equal(record_parse(buf, (size_t)len, &back, err, sizeof(err)), 0);
+	assert_memory_equal(&rec, &back, sizeof(rec));
+	assert_non_null(strstr(buf, "created = 2026-11-22T00:00:00Z\n"));
+	assert_non_null(strstr(buf, "level_mean = -0.399994 0.099991 258.100006\n"));
+
+	/* every Q16 mean survives the 6-decimal text form */
+	for (q = -2048 * 65536; q <= 2048 * 65536; q += 65536 / 16 * 7 + 1) {
+		rec.level_mean_q16[0] = q;
+		len = format(&rec, buf, sizeof(buf));
+		assert_int_equal(record_parse(buf, (size_t)len, &back, err,
+					      sizeof(err)), 0);
+		assert_int_equal(back.level_mean_q16[0], q);
+	}
+}
+
+/* Any single changed byte is refused: syntax, range or checksum */
+static void every_corruption_refused(void **state)
+{
+	static const u8 flips[] = { 0x01, 0x02, 0x10, 0x20, 0x80, 0xff };
+	struct calib_record rec, back;
+	char buf[RECORD_MAX_SIZE], err[256];
+	int len, i;
+	unsigned int f;
+
+	sample_record(&rec);
+	len = format(&rec, buf, sizeof(buf));
+	for (i = 0; i < len; i++) {
+		for (f = 0; f < sizeof(flips); f++) {
+			char copy[RECORD_MAX_SIZE];
+
+			memcpy(copy, buf, (size_t)len);
+			copy[i] ^= flips[f];
+			if (record_parse(copy, (size_t)len, &back, err,
+					 sizeof(err)) == 0)
+				fail_msg("byte %d ^ 0x%02x accepted", i, flips[f]);
+		}
+	}
+}
+
+static void every_truncation_refused(void **state)
+{
+	struct calib_record rec, back;
+	char buf[RECORD_MAX_SIZE], err[256];
+	int len, i;
+
+	sample_record(&rec);
+	len = format(&rec, buf, sizeof(buf));
+	for (i = 0; i < len; i++)
+		assert_int_equal(record_parse(buf, (size_t)i, &back, err,
+					      sizeof(err)), -EINVAL);
+	/* and nothing may follow the checksum line */
+	memcpy(buf + len, "x\n", 2);
+	assert_int_equal(record_parse(buf, (size_t)len + 2, &back, err,
+				      sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "after the crc32"));
+}
+
+/* Replace @key's line with @line and re-seal with a fresh checksum */
+static int edit(const char *key, const char *line, char *out)
+{
+	struct calib_record rec;
+	char buf[RECORD_MAX_SIZE], body[RECORD_MAX_SIZE];
+	char *p, *q, *crc;
+	size_t blen;
+	int len;
+
+	sample_record(&rec);
+	len = format(&rec, buf, sizeof(buf));
+	buf[len] = '\0';
+	body[0] = '\0';
+	for (p = buf; *p; p = q + 1) {
+		q = strchr(p, '\n');
+		if (!strncmp(p, key, strlen(key)) && p[strlen(key)] == ' ') {
+			if (line)
+				strcat(strcat(body, line), "\n");
+		} else {
+			strncat(body, p, (size_t)(q - p + 1));
+		}
+	}
+	crc = strstr(body, "crc32 = ");
+	*crc = '\0';
+	blen = strlen(body);
+	return sprintf(out, "%scrc32 = %08x\n", body, record_crc32(body, blen));
+}
+
+static void expect_refused(const char *key, const char *line, const char *why)
+{
+	struct calib_record back;
+	char buf[RECORD_MAX_SIZE], err[256];
+	int len = edit(key, line, buf);
+
+	assert_int_equal(record_parse(buf, (size_t)len, &back, err, sizeof(err)),
+			 -EINVAL);
+	if (!strstr(err, why))
+		fail_msg("%s: \"%s\" does not say \"%s\"", key, err, why);
+}
+
+static void fields_validated(void **state)
+{
+	expect_refused("format", "format = as9888-calibration 2", "format must be");
+	expect_refused("format", "format = something 1", "format must be");
+	expect_refused("format", NULL, "format is missing");
+	expect_refused("chip", "chip = 0000000000000000", "does not match");
+	expect_refused("chip", "chip = 676f64b435a720bA", "chip must be");
+	expect_refused("created", "created = yesterday", "created must be");
+	expect_refused("created", "created = 2026-13-01T00:00:00Z", "created must be");
+	expect_refused("eeprom", "eeprom = 9a 71 15", "eeprom must be");
+	expect_refused("dac", "dac = 0f 8e 8c 00", "dac must be");
+	expect_refused("dac", "dac = 0f 8e c4", "DAC value 0xc4");
+	expect_refused("dac", "dac = 44 8e 8c", "DAC value 0x44");
+	expect_refused("level_mean", "level_mean = 1 2 3", "level_mean must be");
+	expect_refused("level_mean", "level_mean = 0.000000 0.000000 2048.000001",
+		       "level_mean must be");
+	expect_refused("level_mean", "level_mean = nan 0.000000 0.000000",
+		       "level_mean must be");
+	expect_refused("t_level", "t_level = 85.001", "t_level must be");
+	expect_refused("t_level", "t_level = 25", "t_level must be");
+	expect_refused("gravity", "gravity = 0 0 0", "exactly one axis");
+	expect_refused("gravity", "gravity = 0 -1 -1", "exactly one axis");
+	expect_refused("gravity", "gravity = 0 0 2", "gravity must be");
+	expect_refused("samples", "samples = 9", "samples must be");
+	expect_refused("samples", "samples = 4097", "samples must be");
+	expect_refused("samples", "samples = 16.0", "samples must be");
+	expect_refused("lpf", "lpf = yes", "lpf must be");
+	expect_refused("lpf", "lpf = on\nlpf = off", "given twice");
+	expect_refused("lpf", "lpf = on\nfoo = 1", "unknown key");
+	expect_refused("lpf", "lpf on", "expected \"key = value\"");
+}
+
+/* A record whose EEPROM data is unusable is refused too */
+static void eeprom_validated(void **state)
+{
+	struct calib_record rec;
+	char err[256];
+
+	sample_record(&rec);
+	rec.eeprom[AS9888_EE_EAGA(1)] = 0x3f;		/* gain 63 */
+	assert_int_equal(record_validate(&rec, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "EEPROM"));
+	sample_record(&rec);
+	memset(rec.eeprom, 0xff, sizeof(rec.eeprom));
+	assert_int_equal(record_validate(&rec, err, sizeof(err)), -EINVAL);
+}
+
+static void make_tmpdir(char *dir, size_t len)
+{
+	snprintf(dir, len, "/tmp/as9888-record-XXXXXX");
+	assert_non_null(mkdtemp(dir));
+}
+
+static void atomic_write_and_read(void **state)
+{
+	char dir[64], path[128], tmp[160], buf[64], err[256];
+	struct stat st;
+	mode_t old = umask(0077);
+
+	make_tmpdir(dir, sizeof(dir));
+	snprintf(path, sizeof(path), "%s/cal", dir);
+	snprintf(tmp, sizeof(tmp), "%s/cal.new", dir);
+
+	assert_int_equal(atomic_write_file(path, "one\n", 4, 0644, err, sizeof(err)), 0);
+	assert_int_equal(stat(path, &st), 0);
+	assert_int_equal(st.st_mode & 07777, 0644);	/* whatever the umask */
+	assert_int_equal(access(tmp, F_OK), -1);
+	/* a stale temporary from a crash is replaced */
+	close(open(tmp, O_CREAT | O_WRONLY, 0600));
+	assert_int_equal(atomic_write_file(path, "two\n", 4, 0644, err, sizeof(err)), 0);
+	assert_int_equal(access(tmp, F_OK), -1);
+	assert_int_equal(read_file_nofollow(path, buf, sizeof(buf), err, sizeof(err)), 4);
+	assert_memory_equal(buf, "two\n", 4);
+	/* too large */
+	assert_int_equal(read_file_nofollow(path, buf, 3, err, sizeof(err)), -EFBIG);
+	/* missing */
+	unlink(path);
+	assert_int_equal(read_file_nofollow(path, buf, sizeof(buf), err, sizeof(err)),
+			 -ENOENT);
+	assert_non_null(strstr(err, path));
+	rmdir(dir);
+	umask(old);
+}
+
+static void symlinks_refused(void **state)
+{
+	char dir[64], path[128], target[128], buf[64], err[256];
+
+	make_tmpdir(dir, sizeof(dir));
+	snprintf(path, sizeof(path), "%s/cal", dir);
+	snprintf(target, sizeof(target), "%s/elsewhere", dir);
+	assert_int_equal(atomic_write_file(target, "keep\n", 5, 0644, err,
+					   sizeof(err)), 0);
+	assert_int_equal(symlink(target, path), 0);
+
+	assert_int_equal(read_file_nofollow(path, buf, sizeof(buf), err, sizeof(err)),
+			 -ELOOP);
+	assert_non_null(strstr(err, "symbolic link"));
+	assert_int_equal(atomic_write_file(path, "new\n", 4, 0644, err, sizeof(err)),
+			 -ELOOP);
+	/* the link and its target are untouched */
+	assert_int_equal(read_file_nofollow(target, buf, sizeof(buf), err, sizeof(err)), 5);
+	assert_memory_equal(buf, "keep\n", 5);
+
+	unlink(path);
+	unlink(target);
+	/* a directory at the record path */
+	assert_int_equal(mkdir(path, 0755), 0);
+	assert_int_equal(atomic_write_file(path, "new\n", 4, 0644, err, sizeof(err)),
+			 -EEXIST);
+	rmdir(path);
+	rmdir(dir);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(round_trip),
+		cmocka_unit_test(every_corruption_refused),
+		cmocka_unit_test(every_truncation_refused),
+		cmocka_unit_test(fields_validated),
+		cmocka_unit_test(eeprom_validated),
+		cmocka_unit_test(atomic_write_and_read),
+		cmocka_unit_test(symlinks_refused),
+	};
+
+	return cmocka_run_group_tests_name("record", tests, NULL, NULL);
+}
