@@ -790,6 +790,7 @@ int ftest_run(struct transport *t, const struct ftest_opts *o,
 	      struct ftest_result *res)
 {
 	struct ftest_ctx x = { .o = o, .res = res };
+	uint64_t start = transport_now_ns(t);
 	int ret;
 
 	chip_init(&x.chip, t);
@@ -806,6 +807,7 @@ int ftest_run(struct transport *t, const struct ftest_opts *o,
 
 	/* leave the chip idle whatever happened; a failure here changes nothing */
 	chip_set_mode(&x.chip, AS9888_MS_POWER_DOWN);
+	res->duration_ns = transport_now_ns(t) - start;
 
 	return ret;
 }

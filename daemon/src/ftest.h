@@ -56,6 +56,7 @@ void ftest_opts_default(struct ftest_opts *o);
  * @have_calibration: step 3 completed and @rec holds the calibration
  * @rec:	the calibration record (without timestamp)
  * @offset_q16:	Ot_L per axis with the new DAC values
+ * @duration_ns: how long steps 1..3 took on the backend's clock
  */
 struct ftest_result {
 	struct report report;
@@ -65,6 +66,7 @@ struct ftest_result {
 	bool have_calibration;
 	struct calib_record rec;
 	int32_t offset_q16[AS9888_AXES];
+	uint64_t duration_ns;
 };
 
 /*

@@ -115,6 +115,7 @@ static void print_factory_json(FILE *out, const struct ftest_result *res,
 			rec->gravity[1], rec->gravity[2], rec->samples,
 			rec->lpf ? "true" : "false");
 	}
+	fprintf(out, ",\n  \"duration_ms\": %.3f", res->duration_ns / 1e6);
 	fputs(",\n  \"record\": ", out);
 	json_string(out, stored ? record_path : NULL);
 	fputs("\n}\n", out);
@@ -143,6 +144,7 @@ static void print_factory_text(FILE *out, const struct ftest_result *res)
 		fprintf(out, "  samples      %u%s\n", rec->samples,
 			rec->lpf ? " (low-pass filter on)" : "");
 	}
+	fprintf(out, "\nSteps 1-3 took %.1f ms\n", res->duration_ns / 1e6);
 	if (failed)
 		fprintf(out, "\nResult: FAIL at step %s (%s: %s)\n", failed->step,
 			failed->name, failed->measured);

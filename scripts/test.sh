@@ -1,0 +1,85 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# Run every test of the project and end with "N passed, N failed".
+#
+#   scripts/test.sh            everything
+#   scripts/test.sh userspace  only the userspace build and tests
+#
+# Userspace: the Meson suite under AddressSanitizer and
+# UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
+# conformance, simulator, factory test engine, record, save failure
+# injection), a bounded libFuzzer run of the record parser, the systemd
+# unit check, and a release build of the factory-test benchmark.
+set -uo pipefail
+
+top=$(cd "$(dirname "$0")/.." && pwd)
+build=${AS9888_BUILD:-$top/build}
+export AS9888_BUILD=$build
+what=${1:-all}
+passed=0
+failed=0
+failures=()
+
+# A stage counts as one test, unless it counts its own (counted=1)
+stage() {
+	local name=$1
+	shift
+	echo "== $name"
+	counted=0
+	if "$@"; then
+		[ $counted -eq 1 ] || passed=$((passed + 1))
+		echo "-- $name: pass"
+	else
+		[ $counted -eq 1 ] || failed=$((failed + 1))
+		failures+=("$name")
+		echo "-- $name: FAIL"
+	fi
+}
+
+meson_suite() {
+	local dir=$build/asan
+	[ -f "$dir/build.ninja" ] ||
+		meson setup "$dir" "$top" -Db_sanitize=address,undefined \
+			-Db_lundef=false >/dev/null || return 1
+	ninja -C "$dir" || return 1
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+		meson test -C "$dir" --num-processes 2 --print-errorlogs
+	local rc=$?
+	# count the suite's own tests into the summary
+	local ok fail
+	ok=$(grep -c '"result": "OK"' "$dir/meson-logs/testlog.json" || true)
+	fail=$(grep -vc '"result": "OK"' "$dir/meson-logs/testlog.json" || true)
+	echo "meson: $ok tests passed, $fail failed"
+	passed=$((passed + ok))
+	failed=$((failed + fail))
+	counted=1
+	return $rc
+}
+
+release_build() {
+	local dir=$build/release
+	[ -f "$dir/build.ninja" ] ||
+		meson setup "$dir" "$top" --buildtype=release >/dev/null || return 1
+	ninja -C "$dir"
+}
+
+benchmark() {
+	"$top/scripts/bench-factory-test.sh" "$build/release/daemon/as9888-calibd"
+}
+
+stage "setup" "$top/scripts/setup.sh"
+stage "meson test (ASan+UBSan)" meson_suite
+stage "fuzz record parser (60 s)" "$top/scripts/fuzz.sh" 60
+stage "release build" release_build
+stage "systemd units" "$top/scripts/check-units.sh" "$build/release/daemon/as9888-calibd"
+stage "factory-test benchmark" benchmark
+
+if [ "$what" = all ]; then
+	:
+fi
+
+echo
+[ ${#failures[@]} -eq 0 ] || printf 'failed: %s\n' "${failures[@]}"
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
