@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <time.h>
 
 #include "as9888_sim.h"
@@ -79,6 +80,13 @@ struct as9888_sim *as9888_sim_new(const struct as9888_unit *unit,
 	if (!sim)
 		return NULL;
 	sim->clock = opts->clock;
+	/*
+	 * A real chip's waits are microseconds long: without this, every
+	 * sleep of the real-time clock would overshoot by the default 50 us
+	 * of timer slack.
+	 */
+	if (sim->clock == AS9888_SIM_CLOCK_REAL)
+		prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
 	sim->bus = opts->bus;
 	sim->bus_hz = opts->bus_hz;
 	if (!sim->bus_hz)
