@@ -11,7 +11,7 @@ packages=(
 	libcmocka-dev
 	libgpiod-dev gpiod
 	clang-14 libclang-rt-14-dev
-	strace
+	strace python3
 	systemd man-db
 )
 

@@ -1,0 +1,115 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# as9888-calibd as a user meets it: commands, exit codes, messages, the JSON
+# reports, restore refusing foreign or corrupt records, bad input refused
+# with nothing lost. Output is TAP.
+set -u
+
+calibd=${1:?usage: cli.sh PATH-TO-as9888-calibd}
+work=$(mktemp -d /tmp/as9888-cli-XXXXXX)
+trap 'rm -rf "$work"' EXIT
+export ASAN_OPTIONS=detect_leaks=1
+n=0
+fail=0
+
+check() {
+	local what=$1
+	shift
+	n=$((n + 1))
+	if "$@"; then
+		echo "ok $n - $what"
+	else
+		fail=$((fail + 1))
+		echo "not ok $n - $what"
+	fi
+}
+
+# run CMD...: sets rc, out, err
+run() {
+	"$calibd" "$@" >"$work/out" 2>"$work/err"
+	rc=$?
+	out=$(cat "$work/out")
+	err=$(cat "$work/err")
+}
+
+says() { grep -q -- "$1" "$work/$2"; }
+json() { python3 -c "import json,sys; d=json.load(open('$work/out')); sys.exit(0 if ($1) else 1)"; }
+
+rec=$work/state/calibration
+vt="--sim-clock virtual"
+
+run help
+check "help exits 0 and lists the commands" \
+	test $rc -eq 0 -a -n "$(grep -e factory-test "$work/out")"
+run frobnicate
+check "unknown command: exit 2 with a message" eval '[ $rc -eq 2 ] && says "unknown command" err'
+for bad in "--samples 9" "--samples 4097" "--samples ten" "--fluctuation -1" \
+	   "--gravity up" "--permissible-error 0" "--backend i2c" "--sim-clock fast" \
+	   "--temperature 20" "--bogus" "extra"; do
+	# shellcheck disable=SC2086
+	run factory-test $vt --record "$rec" $bad
+	check "factory-test $bad: exit 2, message, nothing written" \
+		eval '[ $rc -eq 2 ] && [ -s "$work/err" ] && [ ! -e "$rec" ]'
+done
+
+run factory-test $vt --record "$rec" --json
+check "factory-test --json: pass, exit 0" test $rc -eq 0
+check "JSON report has the documented fields" json \
+	"d['result'] == 'pass' and d['failed_step'] is None and len(d['steps']) > 40 and \
+	 all(set(s) >= {'step','name','measured','limits','result'} for s in d['steps']) and \
+	 d['calibration']['dac'] == [13, 143, 140] and len(d['calibration']['level_mean']) == 3 and \
+	 len(d['calibration']['offset']) == 3 and d['calibration']['gravity'] == [0, 0, -1] and \
+	 d['calibration']['samples'] == 10 and abs(d['calibration']['t_level'] - 25) < 1"
+check "record written with mode 0644 in a 0755 directory" \
+	test "$(stat -c %a "$rec")" = 644 -a "$(stat -c %a "$(dirname "$rec")")" = 755
+cp "$rec" "$work/good"
+
+run show --record "$rec" --temperature 60 --json
+check "show --json: temperature and axes" json \
+	"d['temperature'] == 60 and set(d['axes']) == {'x','y','z'} and \
+	 abs(d['axes']['x']['sensitivity'] - 219.649) < 0.01 and \
+	 abs(d['axes']['x']['offset'] - (d['record']['level_mean'][0] + 2.4 * 35)) < 0.01"
+run show --record "$rec" --temperature 86
+check "show --temperature 86: exit 2" test $rc -eq 2
+
+run restore $vt --record "$rec"
+check "restore: exit 0, quiet" test $rc -eq 0 -a -z "$out$err"
+
+printf 'eeprom = 9a 71 15 5c 81 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 50\n' >"$work/other.unit"
+run restore $vt --record "$rec" --unit "$work/other.unit"
+check "restore on another chip: refused, exit 1" \
+	eval '[ $rc -eq 1 ] && says "belongs to chip" err && says "nothing applied" err'
+
+sed 's/^samples = 10$/samples = 11/' "$work/good" >"$rec"
+run restore $vt --record "$rec"
+check "restore of an edited record: checksum refused" \
+	eval '[ $rc -eq 1 ] && says "checksum mismatch" err'
+head -c 100 "$work/good" >"$rec"
+run restore $vt --record "$rec"
+check "restore of a truncated record: refused" eval '[ $rc -eq 1 ] && says "not a valid record" err'
+rm -f "$rec"
+run restore $vt --record "$rec"
+check "restore without a record: exit 1 naming the file" eval '[ $rc -eq 1 ] && says "$rec" err'
+ln -s "$work/good" "$rec"
+run restore $vt --record "$rec"
+check "restore through a symlink: refused" eval '[ $rc -eq 1 ] && says "symbolic link" err'
+run factory-test $vt --record "$rec"
+check "factory-test over a symlink: refused, link kept" \
+	eval '[ $rc -eq 1 ] && [ -L "$rec" ] && cmp -s "$work/good" "$(readlink "$rec")"'
+rm -f "$rec"
+cp "$work/good" "$rec"
+
+printf 'fault = selftest_weak\n' >"$work/weak.unit"
+run factory-test $vt --record "$rec" --unit "$work/weak.unit" --json
+check "failing unit: exit 1, failed_step 2-21, old record kept" \
+	eval '[ $rc -eq 1 ] && cmp -s "$work/good" "$rec"' 
+check "failing unit: JSON says fail at 2-21" json \
+	"d['result'] == 'fail' and d['failed_step'] == '2-21' and d['calibration'] is None"
+
+printf 'up = 0 0 1\nnoise = lots\n' >"$work/bad.unit"
+run factory-test $vt --record "$rec" --unit "$work/bad.unit"
+check "bad unit file: exit 1 with file and line" eval '[ $rc -eq 1 ] && says "bad.unit:2" err'
+
+echo "1..$n"
+[ $fail -eq 0 ]
