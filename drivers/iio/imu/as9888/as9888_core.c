@@ -1,0 +1,2057 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * ALSEN AS9888 6-axis sensor: 3-axis magnetometer, 3-axis accelerometer and
+ * temperature sensor. Bus-independent core.
+ *
+ * The chip has no continuous mode: every sample is one single measurement
+ * (MS = 0x01) that ends with data ready (ST1.DRDY, and INT1 when DR1EN is
+ * set), after which the chip is back in power-down. The magnetometer is only
+ * measured when SLCT2.MEN is set, which makes a sample take t_MAG instead of
+ * t_ACC, so MEN is set only when a magnetometer channel is read.
+ *
+ * Factory trim comes from an EEPROM that is readable only in EEPROM access
+ * mode; it is read once at probe and decoded with the shared calibration
+ * arithmetic of as9888_calib.c, which also provides every formula used for
+ * the accelerometer scale and offset.
+ */
+
+#include <linux/bitfield.h>
+#include <linux/bitmap.h>
+#include <linux/cleanup.h>
+#include <linux/completion.h>
+#include <linux/delay.h>
+#include <linux/device.h>
+#include <linux/err.h>
+#include <linux/gpio/consumer.h>
+#include <linux/interrupt.h>
+#include <linux/irq.h>
+#include <linux/kernel.h>
+#include <linux/ktime.h>
+#include <linux/math64.h>
+#include <linux/module.h>
+#include <linux/mutex.h>
+#include <linux/nvmem-provider.h>
+#include <linux/pm.h>
+#include <linux/pm_runtime.h>
+#include <linux/property.h>
+#include <linux/regmap.h>
+#include <linux/regulator/consumer.h>
+#include <linux/sysfs.h>
+#include <linux/wait.h>
+
+#include <linux/iio/buffer.h>
+#include <linux/iio/iio.h>
+#include <linux/iio/sysfs.h>
+#include <linux/iio/trigger.h>
+#include <linux/iio/trigger_consumer.h>
+#include <linux/iio/triggered_buffer.h>
+
+#include <asm/byteorder.h>
+
+#include "as9888.h"
+
+#define AS9888_DRV_NAME			"as9888"
+
+/* A measurement that has not completed by 1.5 t + margin has failed */
+#define AS9888_MEAS_MARGIN_US		2000
+#define AS9888_MEAS_TIMEOUT_US(t)	((t) * 3 / 2 + AS9888_MEAS_MARGIN_US)
+/* ST1 polling interval when no interrupt is wired */
+#define AS9888_POLL_US			100
+
+#define AS9888_AUTOSUSPEND_MS		2000
+/* Older temperatures are refreshed before computing scale and offset */
+#define AS9888_TEMP_MAX_AGE_MS		1000
+/* Attempts to start the next measurement of a data-ready triggered buffer */
+#define AS9888_START_RETRIES		3
+
+#define AS9888_SAMP_FREQ_DEFAULT	100
+
+/*
+ * Magnetometer: 0.3 uT/LSB before adjustment, 1 G = 100 uT, and the
+ * adjustment multiplies by (EHC + 128) / 256, so the scale in gauss is
+ * 3 * (EHC + 128) / 256000.
+ */
+#define AS9888_MAGN_SCALE_NUM		3
+#define AS9888_MAGN_SCALE_DEN		256000
+#define AS9888_EHC_OFFSET		128
+
+/* Standard gravity, nm/s^2 */
+#define AS9888_G_NANO			9806650000LL
+#define AS9888_NANO			1000000000LL
+
+/*
+ * Temperature, datasheet section 5: T = (176 - TMPS) / 1.6 degC, i.e.
+ * T [mdegC] = (TMPS - 176) * -625. IIO computes (raw + offset) * scale,
+ * so raw = TMPS, offset = -176 and scale = -625 mdegC give it exactly.
+ */
+#define AS9888_TEMP_OFFSET		(-AS9888_TMPS_ZERO_DEGC)
+#define AS9888_TEMP_SCALE_MDEGC		(-AS9888_MDEGC_PER_TMPS)
+
+/* Accepted level-test mean: twice the range any DAC setting can shift */
+#define AS9888_CALIB_A_MAX_Q16		(16384 * AS9888_Q16_ONE)
+#define AS9888_CALIB_FIELDS		7
+
+enum as9888_scan {
+	AS9888_SCAN_ACCEL_X,
+	AS9888_SCAN_ACCEL_Y,
+	AS9888_SCAN_ACCEL_Z,
+	AS9888_SCAN_MAGN_X,
+	AS9888_SCAN_MAGN_Y,
+	AS9888_SCAN_MAGN_Z,
+	AS9888_SCAN_TEMP,
+	AS9888_SCAN_TIMESTAMP,
+};
+
+#define AS9888_SCAN_MAGN_MSK	GENMASK(AS9888_SCAN_MAGN_Z, AS9888_SCAN_MAGN_X)
+
+static const char * const as9888_supply_names[] = { "vdd", "vid" };
+
+/**
+ * struct as9888_calibration - level-test data loaded by userspace
+ * @valid:	a record is loaded
+ * @a_q16:	level-test mean A per axis, Q16 LSB, as measured with the
+ *		current offset DAC values (shifted when calibbias changes)
+ * @ot_l_q16:	Ot_L = A + St(t_L) * G per axis, Q16 LSB
+ * @t_l_mdegc:	level-test temperature t_L
+ * @g:		gravity direction in the sensor frame during the level test
+ */
+struct as9888_calibration {
+	bool valid;
+	s32 a_q16[AS9888_AXES];
+	s32 ot_l_q16[AS9888_AXES];
+	s32 t_l_mdegc;
+	s8 g[AS9888_AXES];
+};
+
+/**
+ * struct as9888_selftest - result of the last magnetometer self-test
+ * @done:	a self-test has run
+ * @pass:	every judgment of step 2 of the application note passed
+ * @adj_q8:	self-test reading per axis after sensitivity adjustment,
+ *		1/256 LSB
+ */
+struct as9888_selftest {
+	bool done;
+	bool pass;
+	s32 adj_q8[AS9888_AXES];
+};
+
+/**
+ * struct as9888_data - driver state
+ * @dev:	the bus device
+ * @regmap:	register map; the trim and configuration registers are cached
+ *		and rewritten by regcache_sync() after a power cycle
+ * @trig:	data-ready trigger, NULL when INT1 is not wired
+ * @supplies:	vdd and vid
+ * @orientation: mount matrix from firmware
+ * @ee:		the decoded factory EEPROM, read once at probe
+ * @irq:	INT1, or 0 to poll ST1
+ * @drdy:	completed by INT1 for measurements waited for synchronously
+ * @stop_wq:	wakes a data-ready triggered buffer that waits for its next
+ *		sampling period when the buffer stops
+ * @drdy_time:	ktime of the last INT1 edge (the chip entered power-down)
+ * @drdy_ts:	IIO timestamp of the last INT1 edge
+ * @trig_running: the data-ready triggered buffer is running; written under
+ *		@lock, read locklessly by the interrupt handler
+ * @lock:	serialises every register access sequence of the driver and
+ *		protects the fields below. A measurement is a sequence (mode
+ *		write, wait, burst read) that must not interleave with another
+ *		one or with a trim write, which the chip accepts in power-down
+ *		only. With @lock held and no data-ready triggered buffer
+ *		running, the chip is in power-down. Taken after the IIO
+ *		direct-mode claim and after a runtime PM reference, never
+ *		before them.
+ * @pd_since:	when the chip last entered power-down (t_PD reference)
+ * @last_start:	when the last measurement was started
+ * @trig_resume: @trig_running was set when the system suspended
+ * @scan_mask:	channels of the buffer's scan
+ * @buf_men:	the buffer's scan includes a magnetometer channel
+ * @alpf:	accelerometer low-pass filter enabled
+ * @samp_freq:	sampling frequency of the data-ready triggered buffer, Hz
+ * @tmps:	TMPS of the last sample
+ * @tmps_time:	when @tmps was measured
+ * @tmps_valid:	@tmps holds a measured value
+ * @calib:	level-test calibration loaded by userspace
+ * @selftest:	result of the last self-test
+ * @scan:	buffer for one scan: up to seven 16-bit channels, timestamp
+ * @scan.chans: the channel values
+ * @scan.timestamp: filled in by the IIO core
+ */
+struct as9888_data {
+	struct device *dev;
+	struct regmap *regmap;
+	struct iio_trigger *trig;
+	struct regulator_bulk_data supplies[ARRAY_SIZE(as9888_supply_names)];
+	struct iio_mount_matrix orientation;
+	struct as9888_eeprom ee;
+	int irq;
+	struct completion drdy;
+	wait_queue_head_t stop_wq;
+	ktime_t drdy_time;
+	s64 drdy_ts;
+	bool trig_running;
+
+	/* Serialises the register access sequences, see @lock above */
+	struct mutex lock;
+	ktime_t pd_since;
+	ktime_t last_start;
+	bool trig_resume;
+	unsigned long scan_mask;
+	bool buf_men;
+	bool alpf;
+	int samp_freq;
+	u8 tmps;
+	ktime_t tmps_time;
+	bool tmps_valid;
+	struct as9888_calibration calib;
+	struct as9888_selftest selftest;
+
+	struct {
+		s16 chans[AS9888_SCAN_TIMESTAMP];
+		aligned_s64 timestamp;
+	} scan;
+};
+
+/* Register map */
+
+static const struct regmap_range as9888_readable_ranges[] = {
+	regmap_reg_range(AS9888_REG_WIA, AS9888_REG_WIA),
+	regmap_reg_range(AS9888_REG_INT1EN, AS9888_REG_MS),
+	regmap_reg_range(AS9888_REG_ST1, AS9888_REG_ST2),
+	regmap_reg_range(AS9888_REG_REF1, AS9888_REG_AZDA),
+	regmap_reg_range(AS9888_REG_EEPROM, AS9888_REG_EEPROM_END),
+};
+
+static const struct regmap_access_table as9888_readable_table = {
+	.yes_ranges = as9888_readable_ranges,
+	.n_yes_ranges = ARRAY_SIZE(as9888_readable_ranges),
+};
+
+static const struct regmap_range as9888_writeable_ranges[] = {
+	regmap_reg_range(AS9888_REG_INT1EN, AS9888_REG_INT2EN),
+	regmap_reg_range(AS9888_REG_SLCT1, AS9888_REG_MS),
+	regmap_reg_range(AS9888_REG_REF1, AS9888_REG_AZDA),
+};
+
+static const struct regmap_access_table as9888_writeable_table = {
+	.yes_ranges = as9888_writeable_ranges,
+	.n_yes_ranges = ARRAY_SIZE(as9888_writeable_ranges),
+};
+
+/*
+ * MS returns to power-down by itself, status and data change with every
+ * measurement, and the EEPROM window reads 0x00 outside EEPROM access mode:
+ * none of them can be cached. The driver keeps its own copy of the EEPROM.
+ */
+static const struct regmap_range as9888_volatile_ranges[] = {
+	regmap_reg_range(AS9888_REG_WIA, AS9888_REG_WIA),
+	regmap_reg_range(AS9888_REG_INT1ST, AS9888_REG_INT2ST),
+	regmap_reg_range(AS9888_REG_MS, AS9888_REG_MS),
+	regmap_reg_range(AS9888_REG_ST1, AS9888_REG_ST2),
+	regmap_reg_range(AS9888_REG_EEPROM, AS9888_REG_EEPROM_END),
+};
+
+static const struct regmap_access_table as9888_volatile_table = {
+	.yes_ranges = as9888_volatile_ranges,
+	.n_yes_ranges = ARRAY_SIZE(as9888_volatile_ranges),
+};
+
+/* Reading INT1ST/INT2ST deasserts the pin, reading ST2 clears DRDY and DOR */
+static const struct regmap_range as9888_precious_ranges[] = {
+	regmap_reg_range(AS9888_REG_INT1ST, AS9888_REG_INT2ST),
+	regmap_reg_range(AS9888_REG_ST2, AS9888_REG_ST2),
+};
+
+static const struct regmap_access_table as9888_precious_table = {
+	.yes_ranges = as9888_precious_ranges,
+	.n_yes_ranges = ARRAY_SIZE(as9888_precious_ranges),
+};
+
+static const struct reg_default as9888_reg_defaults[] = {
+	{ AS9888_REG_INT1EN, 0x00 },
+	{ AS9888_REG_INT2EN, 0x00 },
+	{ AS9888_REG_SLCT1, 0x00 },
+	{ AS9888_REG_SLCT2, 0x00 },
+	{ AS9888_REG_REF1, 0x00 },
+	{ AS9888_REG_REF2, 0x00 },
+	{ AS9888_REG_REF3, 0x00 },
+	{ AS9888_REG_OSC, 0x00 },
+	{ AS9888_REG_AGA(0), 0x00 },
+	{ AS9888_REG_AGA(1), 0x00 },
+	{ AS9888_REG_AGA(2), 0x00 },
+	{ AS9888_REG_ADA(0), AS9888_DAC_ZERO },
+	{ AS9888_REG_ADA(1), AS9888_DAC_ZERO },
+	{ AS9888_REG_ADA(2), AS9888_DAC_ZERO },
+};
+
+#define AS9888_REGMAP_CONFIG_COMMON					\
+	.reg_bits = 8,							\
+	.val_bits = 8,							\
+	.max_register = AS9888_MAX_REG,					\
+	.rd_table = &as9888_readable_table,				\
+	.wr_table = &as9888_writeable_table,				\
+	.volatile_table = &as9888_volatile_table,			\
+	.precious_table = &as9888_precious_table,			\
+	.reg_defaults = as9888_reg_defaults,				\
+	.num_reg_defaults = ARRAY_SIZE(as9888_reg_defaults),		\
+	.cache_type = AS9888_REGCACHE
+
+const struct regmap_config as9888_i2c_regmap_config = {
+	AS9888_REGMAP_CONFIG_COMMON,
+};
+EXPORT_SYMBOL_NS_GPL(as9888_i2c_regmap_config, AS9888_NS);
+
+/* SPI, datasheet section 1: bit 7 of the first byte set to read */
+const struct regmap_config as9888_spi_regmap_config = {
+	AS9888_REGMAP_CONFIG_COMMON,
+	.read_flag_mask = AS9888_SPI_READ_MSK,
+	.write_flag_mask = 0,
+};
+EXPORT_SYMBOL_NS_GPL(as9888_spi_regmap_config, AS9888_NS);
+
+/* Modes and measurements; all of these run with data->lock held */
+
+/* Wait until t_PD has passed since the chip entered power-down */
+static void as9888_wait_pd(struct as9888_data *data)
+{
+	s64 left_us = ktime_us_delta(ktime_add_us(data->pd_since,
+						  AS9888_T_PD_US),
+				     ktime_get());
+
+	if (left_us > 0)
+		fsleep(left_us);
+}
+
+static int as9888_power_down(struct as9888_data *data)
+{
+	int ret;
+
+	ret = regmap_write(data->regmap, AS9888_REG_MS, AS9888_MS_POWER_DOWN);
+	data->pd_since = ktime_get();
+
+	return ret;
+}
+
+/**
+ * as9888_start() - start a measurement
+ * @data: driver data
+ * @mode: AS9888_MS_SINGLE or AS9888_MS_SELF_TEST
+ * @men: measure the magnetometer too
+ *
+ * A mode is entered from power-down only, and not before t_PD has passed:
+ * a write that breaks this rule is ignored by the chip, so wait for it.
+ * The accepted MS write also deasserts INT1, so INT1ST never needs reading.
+ */
+static int as9888_start(struct as9888_data *data, u8 mode, bool men)
+{
+	unsigned int slct2 = FIELD_PREP(AS9888_SLCT2_MEN_MSK, men) |
+			     FIELD_PREP(AS9888_SLCT2_ALPF_MSK, data->alpf);
+	int ret;
+
+	lockdep_assert_held(&data->lock);
+
+	/* Cached: no bus access unless the setting changes */
+	ret = regmap_update_bits(data->regmap, AS9888_REG_SLCT2,
+				 AS9888_SLCT2_MEN_MSK | AS9888_SLCT2_ALPF_MSK,
+				 slct2);
+	if (ret)
+		return ret;
+
+	if (data->irq)
+		reinit_completion(&data->drdy);
+
+	as9888_wait_pd(data);
+	ret = regmap_write(data->regmap, AS9888_REG_MS, mode);
+	data->last_start = ktime_get();
+
+	return ret;
+}
+
+static unsigned int as9888_meas_time_us(const struct as9888_data *data,
+					bool men)
+{
+	if (men)
+		return AS9888_T_MAG_US;
+
+	return data->alpf ? AS9888_T_ACC_LPF_US : AS9888_T_ACC_US;
+}
+
+static int as9888_read_sample(struct as9888_data *data,
+			      struct as9888_raw_sample *s)
+{
+	return regmap_bulk_read(data->regmap, AS9888_REG_ST1, s, sizeof(*s));
+}
+
+/**
+ * as9888_wait_sample() - wait for a started measurement and read it
+ * @indio_dev: the IIO device
+ * @t_us: duration of the measurement
+ * @s: the sample
+ * @ts: timestamp of the end of the measurement
+ *
+ * With INT1 wired, wait for its edge. Without it, sleep for the duration
+ * of the measurement and read the sample: a sample that is not ready yet
+ * (ST1.DRDY clear) sends the driver polling ST1 until the timeout.
+ *
+ * Return: 0 or a negative error number, -ETIMEDOUT when the measurement
+ * did not complete in time.
+ */
+static int as9888_wait_sample(struct iio_dev *indio_dev, unsigned int t_us,
+			      struct as9888_raw_sample *s, s64 *ts)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	unsigned int timeout_us = AS9888_MEAS_TIMEOUT_US(t_us);
+	unsigned int st1;
+	int ret;
+
+	if (data->irq) {
+		if (!wait_for_completion_timeout(&data->drdy,
+						 usecs_to_jiffies(timeout_us)))
+			return -ETIMEDOUT;
+
+		*ts = data->drdy_ts;
+		data->pd_since = data->drdy_time;
+
+		return as9888_read_sample(data, s);
+	}
+
+	fsleep(t_us);
+	ret = as9888_read_sample(data, s);
+	if (ret)
+		return ret;
+
+	if (!FIELD_GET(AS9888_ST1_DRDY_MSK, s->st1)) {
+		ret = regmap_read_poll_timeout(data->regmap, AS9888_REG_ST1,
+					       st1,
+					       FIELD_GET(AS9888_ST1_DRDY_MSK, st1),
+					       AS9888_POLL_US,
+					       timeout_us - t_us);
+		if (ret)
+			return ret;
+
+		ret = as9888_read_sample(data, s);
+		if (ret)
+			return ret;
+	}
+
+	*ts = iio_get_time_ns(indio_dev);
+	/* The chip entered power-down before we saw DRDY */
+	data->pd_since = ktime_get();
+
+	return 0;
+}
+
+/*
+ * Checks that apply to every sample: data ready (ST1.DRDY) and a healthy
+ * EMPT. A data overrun (ST1.DOR) only means an earlier sample was lost.
+ */
+static int as9888_check_sample(struct as9888_data *data,
+			       const struct as9888_raw_sample *s)
+{
+	if (!FIELD_GET(AS9888_ST1_DRDY_MSK, s->st1)) {
+		dev_err_ratelimited(data->dev, "no data ready (ST1 0x%02x)\n",
+				    s->st1);
+		return -EIO;
+	}
+
+	if (FIELD_GET(AS9888_ST1_DOR_MSK, s->st1))
+		dev_warn_ratelimited(data->dev, "data overrun, a sample was lost\n");
+
+	if (s->empt) {
+		dev_err_ratelimited(data->dev, "EMPT reads 0x%02x, device fault\n",
+				    s->empt);
+		return -EIO;
+	}
+
+	return 0;
+}
+
+/*
+ * Magnetometer checks: HST set means the magnetometer was not measured,
+ * HOFL that an axis saturated.
+ */
+static int as9888_check_magn(const struct as9888_raw_sample *s)
+{
+	if (FIELD_GET(AS9888_ST2_HST_MSK, s->st2))
+		return -EIO;
+
+	if (FIELD_GET(AS9888_ST2_HOFL_MSK, s->st2))
+		return -ERANGE;
+
+	return 0;
+}
+
+static void as9888_update_temperature(struct as9888_data *data,
+				      const struct as9888_raw_sample *s)
+{
+	data->tmps = s->tmps;
+	data->tmps_time = ktime_get();
+	data->tmps_valid = true;
+}
+
+/**
+ * as9888_measure() - run one measurement and read the sample
+ * @indio_dev: the IIO device
+ * @mode: AS9888_MS_SINGLE or AS9888_MS_SELF_TEST
+ * @men: measure the magnetometer too (always done in self-test)
+ * @s: the sample
+ * @ts: timestamp of the sample
+ *
+ * One MS write and one burst read of ST1..ST2 on the bus (plus ST1 polls
+ * in the unusual case that the sample is late without INT1). On any error
+ * the measurement is aborted, leaving the chip in power-down.
+ *
+ * Return: 0 or a negative error number.
+ */
+static int as9888_measure(struct iio_dev *indio_dev, u8 mode, bool men,
+			  struct as9888_raw_sample *s, s64 *ts)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	bool self_test = mode == AS9888_MS_SELF_TEST;
+	unsigned int t_us = as9888_meas_time_us(data, men || self_test);
+	int ret;
+
+	lockdep_assert_held(&data->lock);
+
+	ret = as9888_start(data, mode, men || self_test);
+	if (!ret)
+		ret = as9888_wait_sample(indio_dev, t_us, s, ts);
+	if (ret) {
+		if (ret == -ETIMEDOUT)
+			dev_err_ratelimited(data->dev,
+					    "measurement not done after %u us\n",
+					    AS9888_MEAS_TIMEOUT_US(t_us));
+		/* Abort whatever may still run; the first error is reported */
+		as9888_power_down(data);
+		return ret;
+	}
+
+	ret = as9888_check_sample(data, s);
+	if (ret)
+		return ret;
+
+	if (!self_test)
+		as9888_update_temperature(data, s);
+
+	return 0;
+}
+
+/**
+ * as9888_write_trim() - write a trim register and read it back
+ * @data: driver data
+ * @reg: first register
+ * @val: values
+ * @len: number of registers
+ *
+ * The chip ignores trim writes outside power-down, so make sure it is in
+ * power-down (and t_PD has passed, step 1-29) first, then check the write
+ * with an uncached read (D10).
+ *
+ * Return: 0, -EIO when a register does not read back what was written, or
+ * another negative error number.
+ */
+static int as9888_write_trim(struct as9888_data *data, unsigned int reg,
+			     const u8 *val, size_t len)
+{
+	u8 readback[AS9888_TRIM_LEN];
+	unsigned int ms;
+	size_t i;
+	int ret;
+
+	lockdep_assert_held(&data->lock);
+
+	if (len > sizeof(readback))
+		return -EINVAL;
+
+	ret = regmap_read(data->regmap, AS9888_REG_MS, &ms);
+	if (ret)
+		return ret;
+
+	if (ms != AS9888_MS_POWER_DOWN) {
+		ret = as9888_power_down(data);
+		if (ret)
+			return ret;
+	}
+	as9888_wait_pd(data);
+
+	ret = regmap_bulk_write(data->regmap, reg, val, len);
+	if (ret)
+		return ret;
+
+	regcache_cache_bypass(data->regmap, true);
+	ret = regmap_raw_read(data->regmap, reg, readback, len);
+	regcache_cache_bypass(data->regmap, false);
+	if (ret)
+		return ret;
+
+	for (i = 0; i < len; i++) {
+		if (readback[i] != val[i]) {
+			dev_err(data->dev,
+				"register 0x%02zx reads 0x%02x, 0x%02x written\n",
+				reg + i, readback[i], val[i]);
+			return -EIO;
+		}
+	}
+
+	return 0;
+}
+
+/* Temperature and the accelerometer compensation */
+
+static int as9888_refresh_temperature(struct iio_dev *indio_dev)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct as9888_raw_sample s;
+	s64 ts;
+	int ret;
+
+	ret = pm_runtime_resume_and_get(data->dev);
+	if (ret)
+		return ret;
+
+	scoped_guard(mutex, &data->lock)
+		ret = as9888_measure(indio_dev, AS9888_MS_SINGLE, false, &s,
+				     &ts);
+
+	as9888_pm_put(data->dev);
+
+	return ret;
+}
+
+static bool as9888_temperature_fresh(struct as9888_data *data)
+{
+	return data->tmps_valid &&
+	       ktime_ms_delta(ktime_get(), data->tmps_time) <=
+	       AS9888_TEMP_MAX_AGE_MS;
+}
+
+/**
+ * as9888_temperature() - the current die temperature
+ * @indio_dev: the IIO device
+ * @t_mdegc: the temperature, millidegrees Celsius
+ *
+ * That of the last sample when it is recent. Otherwise a measurement
+ * refreshes it, unless the buffer runs; a running buffer keeps it recent
+ * anyway (before its first sample, t_RT of the EEPROM stands in).
+ *
+ * Return: 0 or a negative error number.
+ */
+static int as9888_temperature(struct iio_dev *indio_dev, s32 *t_mdegc)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	int ret;
+
+	scoped_guard(mutex, &data->lock) {
+		if (as9888_temperature_fresh(data)) {
+			*t_mdegc = as9888_tmps_to_mdegc(data->tmps);
+			return 0;
+		}
+	}
+
+	if (as9888_claim_direct(indio_dev)) {
+		ret = as9888_refresh_temperature(indio_dev);
+		as9888_release_direct(indio_dev);
+		if (ret)
+			return ret;
+	}
+
+	guard(mutex)(&data->lock);
+	*t_mdegc = data->tmps_valid ? as9888_tmps_to_mdegc(data->tmps) :
+				      data->ee.t_rt_mdegc;
+
+	return 0;
+}
+
+/*
+ * Accelerometer scale: m/s^2 per LSB = g / St(t), with St(t) in LSB/g from
+ * the EEPROM (datasheet 6.3, 6.4) at the current temperature.
+ */
+static int as9888_accel_scale(struct iio_dev *indio_dev, int axis, int *val,
+			      int *val2)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	s32 t_mdegc, st_q16;
+	s64 nano;
+	int ret;
+
+	ret = as9888_temperature(indio_dev, &t_mdegc);
+	if (ret)
+		return ret;
+
+	ret = as9888_sensitivity_q16(&data->ee.axis[axis], data->ee.t_rt_mdegc,
+				     t_mdegc, &st_q16);
+	if (ret)
+		return ret;
+	if (st_q16 <= 0)
+		return -EINVAL;
+
+	nano = as9888_div_round_s64(AS9888_G_NANO * AS9888_Q16_ONE, st_q16);
+	*val = div_s64_rem(nano, AS9888_NANO, val2);
+
+	return IIO_VAL_INT_PLUS_NANO;
+}
+
+/*
+ * Accelerometer offset: IIO adds it to raw before scaling, so it is
+ * -Ot(t) = -(Kote * (t - t_L) + Ot_L) (datasheet 6.5) in LSB, returned as
+ * Q16 through IIO_VAL_FRACTIONAL_LOG2; 0 without a calibration.
+ */
+static int as9888_accel_offset(struct iio_dev *indio_dev, int axis, int *val,
+			       int *val2)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct as9888_calibration calib;
+	s32 t_mdegc, ot_q16;
+	int ret;
+
+	scoped_guard(mutex, &data->lock)
+		calib = data->calib;
+
+	if (!calib.valid) {
+		*val = 0;
+		return IIO_VAL_INT;
+	}
+
+	ret = as9888_temperature(indio_dev, &t_mdegc);
+	if (ret)
+		return ret;
+
+	ret = as9888_offset_q16(&data->ee.axis[axis], calib.ot_l_q16[axis],
+				calib.t_l_mdegc, t_mdegc, &ot_q16);
+	if (ret)
+		return ret;
+	if (ot_q16 == S32_MIN)
+		return -ERANGE;
+
+	*val = -ot_q16;
+	*val2 = ilog2(AS9888_Q16_ONE);
+
+	return IIO_VAL_FRACTIONAL_LOG2;
+}
+
+/* Offset DAC */
+
+static int as9888_read_calibbias(struct as9888_data *data, int axis, int *val)
+{
+	unsigned int da;
+	int ret;
+
+	guard(mutex)(&data->lock);
+
+	/* Cached register: no bus access, also fine while suspended */
+	ret = regmap_read(data->regmap, AS9888_REG_ADA(axis), &da);
+	if (ret)
+		return ret;
+
+	*val = as9888_dac2lin(data->ee.axis[axis].ga, da);
+
+	return IIO_VAL_INT;
+}
+
+/*
+ * One linear DAC code moves the output, and so the level-test mean and
+ * offset, by as9888_dac_step_q16(); a loaded calibration follows the DAC.
+ */
+static void as9888_calibration_shift(struct as9888_data *data, int axis,
+				     int dlin)
+{
+	s32 shift;
+
+	if (!data->calib.valid || !dlin)
+		return;
+
+	shift = dlin * as9888_dac_step_q16(data->ee.axis[axis].ga);
+	data->calib.a_q16[axis] += shift;
+	data->calib.ot_l_q16[axis] += shift;
+}
+
+static int as9888_set_calibbias(struct as9888_data *data, int axis, int lin)
+{
+	u8 ga = data->ee.axis[axis].ga;
+	unsigned int da;
+	u8 new_da;
+	int ret;
+
+	lockdep_assert_held(&data->lock);
+
+	ret = regmap_read(data->regmap, AS9888_REG_ADA(axis), &da);
+	if (ret)
+		return ret;
+
+	new_da = as9888_lin2dac(ga, lin);
+	ret = as9888_write_trim(data, AS9888_REG_ADA(axis), &new_da, 1);
+	if (ret)
+		return ret;
+
+	as9888_calibration_shift(data, axis, lin - as9888_dac2lin(ga, da));
+
+	return 0;
+}
+
+static int as9888_write_calibbias(struct iio_dev *indio_dev, int axis,
+				  int lin)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	int ret;
+
+	if (lin < -AS9888_DAC_LIN_MAX || lin > AS9888_DAC_LIN_MAX)
+		return -EINVAL;
+
+	ret = pm_runtime_resume_and_get(data->dev);
+	if (ret)
+		return ret;
+
+	scoped_guard(mutex, &data->lock)
+		ret = as9888_set_calibbias(data, axis, lin);
+
+	as9888_pm_put(data->dev);
+
+	return ret;
+}
+
+/* Single reads */
+
+static int as9888_read_channel(struct iio_dev *indio_dev,
+			       const struct iio_chan_spec *chan, int *val)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	bool men = chan->type == IIO_MAGN;
+	struct as9888_raw_sample s;
+	s64 ts;
+	int ret;
+
+	ret = pm_runtime_resume_and_get(data->dev);
+	if (ret)
+		return ret;
+
+	scoped_guard(mutex, &data->lock)
+		ret = as9888_measure(indio_dev, AS9888_MS_SINGLE, men, &s, &ts);
+
+	as9888_pm_put(data->dev);
+	if (ret)
+		return ret;
+
+	switch (chan->type) {
+	case IIO_ACCEL:
+		*val = (s16)le16_to_cpu(s.accel[chan->address]);
+		return IIO_VAL_INT;
+	case IIO_MAGN:
+		ret = as9888_check_magn(&s);
+		if (ret)
+			return ret;
+		*val = (s16)le16_to_cpu(s.magn[chan->address]);
+		return IIO_VAL_INT;
+	case IIO_TEMP:
+		*val = s.tmps;
+		return IIO_VAL_INT;
+	default:
+		return -EINVAL;
+	}
+}
+
+static int as9888_read_samp_freq(struct as9888_data *data, int *val)
+{
+	guard(mutex)(&data->lock);
+	*val = data->samp_freq;
+
+	return IIO_VAL_INT;
+}
+
+static int as9888_read_raw(struct iio_dev *indio_dev,
+			   const struct iio_chan_spec *chan, int *val,
+			   int *val2, long mask)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	int ret;
+
+	switch (mask) {
+	case IIO_CHAN_INFO_RAW:
+		if (!as9888_claim_direct(indio_dev))
+			return -EBUSY;
+		ret = as9888_read_channel(indio_dev, chan, val);
+		as9888_release_direct(indio_dev);
+		return ret;
+	case IIO_CHAN_INFO_SCALE:
+		switch (chan->type) {
+		case IIO_ACCEL:
+			return as9888_accel_scale(indio_dev, chan->address,
+						  val, val2);
+		case IIO_MAGN:
+			*val = AS9888_MAGN_SCALE_NUM *
+			       (data->ee.axis[chan->address].ehc +
+				AS9888_EHC_OFFSET);
+			*val2 = AS9888_MAGN_SCALE_DEN;
+			return IIO_VAL_FRACTIONAL;
+		case IIO_TEMP:
+			*val = AS9888_TEMP_SCALE_MDEGC;
+			return IIO_VAL_INT;
+		default:
+			return -EINVAL;
+		}
+	case IIO_CHAN_INFO_OFFSET:
+		switch (chan->type) {
+		case IIO_ACCEL:
+			return as9888_accel_offset(indio_dev, chan->address,
+						   val, val2);
+		case IIO_TEMP:
+			*val = AS9888_TEMP_OFFSET;
+			return IIO_VAL_INT;
+		default:
+			return -EINVAL;
+		}
+	case IIO_CHAN_INFO_CALIBBIAS:
+		return as9888_read_calibbias(data, chan->address, val);
+	case IIO_CHAN_INFO_SAMP_FREQ:
+		return as9888_read_samp_freq(data, val);
+	default:
+		return -EINVAL;
+	}
+}
+
+static const int as9888_calibbias_range[] = {
+	-AS9888_DAC_LIN_MAX, 1, AS9888_DAC_LIN_MAX
+};
+
+/*
+ * Rates of the data-ready triggered buffer. The chip needs t_ACC (1.2 ms,
+ * 4.8 ms with the low-pass filter) or t_MAG (7.3 ms) per sample plus t_PD
+ * and the bus transfers; a rate beyond that yields samples as fast as they
+ * complete.
+ */
+static const int as9888_samp_freq_avail[] = {
+	1, 2, 5, 10, 25, 50, 100, 200, 500,
+};
+
+static int as9888_read_avail(struct iio_dev *indio_dev,
+			     const struct iio_chan_spec *chan,
+			     const int **vals, int *type, int *length,
+			     long mask)
+{
+	switch (mask) {
+	case IIO_CHAN_INFO_CALIBBIAS:
+		*vals = as9888_calibbias_range;
+		*type = IIO_VAL_INT;
+		return IIO_AVAIL_RANGE;
+	case IIO_CHAN_INFO_SAMP_FREQ:
+		*vals = as9888_samp_freq_avail;
+		*length = ARRAY_SIZE(as9888_samp_freq_avail);
+		*type = IIO_VAL_INT;
+		return IIO_AVAIL_LIST;
+	default:
+		return -EINVAL;
+	}
+}
+
+static int as9888_write_samp_freq(struct as9888_data *data, int freq)
+{
+	unsigned int i;
+
+	for (i = 0; i < ARRAY_SIZE(as9888_samp_freq_avail); i++) {
+		if (as9888_samp_freq_avail[i] == freq) {
+			guard(mutex)(&data->lock);
+			data->samp_freq = freq;
+			return 0;
+		}
+	}
+
+	return -EINVAL;
+}
+
+static int as9888_write_raw(struct iio_dev *indio_dev,
+			    const struct iio_chan_spec *chan, int val, int val2,
+			    long mask)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	int ret;
+
+	if (val2)
+		return -EINVAL;
+
+	switch (mask) {
+	case IIO_CHAN_INFO_CALIBBIAS:
+		if (!as9888_claim_direct(indio_dev))
+			return -EBUSY;
+		ret = as9888_write_calibbias(indio_dev, chan->address, val);
+		as9888_release_direct(indio_dev);
+		return ret;
+	case IIO_CHAN_INFO_SAMP_FREQ:
+		return as9888_write_samp_freq(data, val);
+	default:
+		return -EINVAL;
+	}
+}
+
+static int as9888_write_raw_get_fmt(struct iio_dev *indio_dev,
+				    const struct iio_chan_spec *chan,
+				    long mask)
+{
+	switch (mask) {
+	case IIO_CHAN_INFO_CALIBBIAS:
+	case IIO_CHAN_INFO_SAMP_FREQ:
+		return IIO_VAL_INT;
+	default:
+		return -EINVAL;
+	}
+}
+
+/* Extended channel attributes */
+
+static const struct iio_mount_matrix *
+as9888_get_mount_matrix(const struct iio_dev *indio_dev,
+			const struct iio_chan_spec *chan)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	return &data->orientation;
+}
+
+static ssize_t as9888_alpf_read(struct iio_dev *indio_dev, uintptr_t private,
+				const struct iio_chan_spec *chan, char *buf)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	guard(mutex)(&data->lock);
+
+	return sysfs_emit(buf, "%d\n", data->alpf);
+}
+
+static ssize_t as9888_alpf_write(struct iio_dev *indio_dev, uintptr_t private,
+				 const struct iio_chan_spec *chan,
+				 const char *buf, size_t len)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	bool enable;
+	int ret;
+
+	ret = kstrtobool(buf, &enable);
+	if (ret)
+		return ret;
+
+	/* The sample time changes: not while the buffer runs */
+	if (!as9888_claim_direct(indio_dev))
+		return -EBUSY;
+
+	scoped_guard(mutex, &data->lock)
+		data->alpf = enable;
+
+	as9888_release_direct(indio_dev);
+
+	return len;
+}
+
+static ssize_t as9888_calibration_read(struct iio_dev *indio_dev,
+				       uintptr_t private,
+				       const struct iio_chan_spec *chan,
+				       char *buf)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	const struct as9888_calibration *c = &data->calib;
+
+	guard(mutex)(&data->lock);
+
+	if (!c->valid)
+		return sysfs_emit(buf, "none\n");
+
+	return sysfs_emit(buf, "%d %d %d %d %d %d %d\n",
+			  c->a_q16[0], c->a_q16[1], c->a_q16[2], c->t_l_mdegc,
+			  c->g[0], c->g[1], c->g[2]);
+}
+
+/**
+ * as9888_calibration_parse() - validate a level-test record
+ * @data: driver data
+ * @buf: "A_x A_y A_z t_L G_x G_y G_z"
+ * @len: length of @buf
+ * @c: the record with Ot_L computed
+ *
+ * A_x..A_z are Q16 LSB within +-AS9888_CALIB_A_MAX_Q16, t_L is in mdegC
+ * within the valid TMPS range and G has exactly one non-zero component,
+ * -1 or 1.
+ *
+ * Return: 0 or -EINVAL.
+ */
+static int as9888_calibration_parse(struct as9888_data *data, const char *buf,
+				    size_t len, struct as9888_calibration *c)
+{
+	int a[AS9888_AXES], g[AS9888_AXES], t, end = 0, axis, ret;
+	unsigned int vertical = 0;
+	s32 st_q16;
+
+	ret = sscanf(buf, "%d %d %d %d %d %d %d %n", &a[0], &a[1], &a[2], &t,
+		     &g[0], &g[1], &g[2], &end);
+	if (ret != AS9888_CALIB_FIELDS || end != len)
+		return -EINVAL;
+
+	if (t < as9888_tmps_to_mdegc(AS9888_TMPS_MAX) ||
+	    t > as9888_tmps_to_mdegc(AS9888_TMPS_MIN))
+		return -EINVAL;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		if (a[axis] < -AS9888_CALIB_A_MAX_Q16 ||
+		    a[axis] > AS9888_CALIB_A_MAX_Q16)
+			return -EINVAL;
+		if (g[axis] < -1 || g[axis] > 1)
+			return -EINVAL;
+		if (g[axis])
+			vertical++;
+	}
+	if (vertical != 1)
+		return -EINVAL;
+
+	c->t_l_mdegc = t;
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		ret = as9888_sensitivity_q16(&data->ee.axis[axis],
+					     data->ee.t_rt_mdegc, t, &st_q16);
+		if (ret)
+			return -EINVAL;
+
+		ret = as9888_offset_level_q16(a[axis], st_q16, g[axis],
+					      &c->ot_l_q16[axis]);
+		if (ret)
+			return -EINVAL;
+
+		c->a_q16[axis] = a[axis];
+		c->g[axis] = g[axis];
+	}
+	c->valid = true;
+
+	return 0;
+}
+
+static ssize_t as9888_calibration_write(struct iio_dev *indio_dev,
+					uintptr_t private,
+					const struct iio_chan_spec *chan,
+					const char *buf, size_t len)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct as9888_calibration c = { };
+	int ret;
+
+	if (!sysfs_streq(buf, "none")) {
+		ret = as9888_calibration_parse(data, buf, len, &c);
+		if (ret)
+			return ret;
+	}
+
+	guard(mutex)(&data->lock);
+	data->calib = c;
+
+	return len;
+}
+
+static const struct iio_chan_spec_ext_info as9888_accel_ext_info[] = {
+	IIO_MOUNT_MATRIX(IIO_SHARED_BY_TYPE, as9888_get_mount_matrix),
+	{
+		.name = "filter_low_pass_en",
+		.shared = IIO_SHARED_BY_TYPE,
+		.read = as9888_alpf_read,
+		.write = as9888_alpf_write,
+	},
+	{
+		.name = "calibration",
+		.shared = IIO_SHARED_BY_TYPE,
+		.read = as9888_calibration_read,
+		.write = as9888_calibration_write,
+	},
+	{ }
+};
+
+static const struct iio_chan_spec_ext_info as9888_magn_ext_info[] = {
+	IIO_MOUNT_MATRIX(IIO_SHARED_BY_TYPE, as9888_get_mount_matrix),
+	{ }
+};
+
+#define AS9888_ACCEL_CHANNEL(_axis) {					\
+	.type = IIO_ACCEL,						\
+	.modified = 1,							\
+	.channel2 = IIO_MOD_##_axis,					\
+	.address = AS9888_SCAN_ACCEL_##_axis - AS9888_SCAN_ACCEL_X,	\
+	.info_mask_separate = BIT(IIO_CHAN_INFO_RAW) |			\
+			      BIT(IIO_CHAN_INFO_SCALE) |		\
+			      BIT(IIO_CHAN_INFO_OFFSET) |		\
+			      BIT(IIO_CHAN_INFO_CALIBBIAS),		\
+	.info_mask_separate_available = BIT(IIO_CHAN_INFO_CALIBBIAS),	\
+	.info_mask_shared_by_all = BIT(IIO_CHAN_INFO_SAMP_FREQ),	\
+	.info_mask_shared_by_all_available = BIT(IIO_CHAN_INFO_SAMP_FREQ), \
+	.scan_index = AS9888_SCAN_ACCEL_##_axis,			\
+	.scan_type = {							\
+		.sign = 's',						\
+		.realbits = 12,						\
+		.storagebits = 16,					\
+		.endianness = IIO_CPU,					\
+	},								\
+	.ext_info = as9888_accel_ext_info,				\
+}
+
+#define AS9888_MAGN_CHANNEL(_axis) {					\
+	.type = IIO_MAGN,						\
+	.modified = 1,							\
+	.channel2 = IIO_MOD_##_axis,					\
+	.address = AS9888_SCAN_MAGN_##_axis - AS9888_SCAN_MAGN_X,	\
+	.info_mask_separate = BIT(IIO_CHAN_INFO_RAW) |			\
+			      BIT(IIO_CHAN_INFO_SCALE),			\
+	.info_mask_shared_by_all = BIT(IIO_CHAN_INFO_SAMP_FREQ),	\
+	.info_mask_shared_by_all_available = BIT(IIO_CHAN_INFO_SAMP_FREQ), \
+	.scan_index = AS9888_SCAN_MAGN_##_axis,				\
+	.scan_type = {							\
+		.sign = 's',						\
+		.realbits = 13,						\
+		.storagebits = 16,					\
+		.endianness = IIO_CPU,					\
+	},								\
+	.ext_info = as9888_magn_ext_info,				\
+}
+
+static const struct iio_chan_spec as9888_channels[] = {
+	AS9888_ACCEL_CHANNEL(X),
+	AS9888_ACCEL_CHANNEL(Y),
+	AS9888_ACCEL_CHANNEL(Z),
+	AS9888_MAGN_CHANNEL(X),
+	AS9888_MAGN_CHANNEL(Y),
+	AS9888_MAGN_CHANNEL(Z),
+	{
+		.type = IIO_TEMP,
+		.info_mask_separate = BIT(IIO_CHAN_INFO_RAW) |
+				      BIT(IIO_CHAN_INFO_OFFSET) |
+				      BIT(IIO_CHAN_INFO_SCALE),
+		.info_mask_shared_by_all = BIT(IIO_CHAN_INFO_SAMP_FREQ),
+		.info_mask_shared_by_all_available =
+			BIT(IIO_CHAN_INFO_SAMP_FREQ),
+		.scan_index = AS9888_SCAN_TEMP,
+		.scan_type = {
+			.sign = 'u',
+			.realbits = 8,
+			.storagebits = 16,
+			.endianness = IIO_CPU,
+		},
+	},
+	IIO_CHAN_SOFT_TIMESTAMP(AS9888_SCAN_TIMESTAMP),
+};
+
+/* Self-test, step 2 of the application note */
+
+/**
+ * as9888_run_selftest() - magnetometer function test
+ * @indio_dev: the IIO device
+ * @res: the result
+ *
+ * A normal measurement with the magnetometer on must complete without
+ * overflow (steps 2-2..2-13), then a self-test measurement must complete
+ * with every axis, after sensitivity adjustment, within its window
+ * (steps 2-14..2-23).
+ *
+ * Return: 0 when both measurements completed (@res says whether the
+ * judgments passed) or a negative error number.
+ */
+static int as9888_run_selftest(struct iio_dev *indio_dev,
+			       struct as9888_selftest *res)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct as9888_raw_sample s;
+	bool pass;
+	int axis, ret;
+	s16 h;
+	s64 ts;
+
+	lockdep_assert_held(&data->lock);
+
+	ret = as9888_measure(indio_dev, AS9888_MS_SINGLE, true, &s, &ts);
+	if (ret)
+		return ret;
+
+	pass = !as9888_check_magn(&s);
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		pass &= !as9888_mag_overflow((s16)le16_to_cpu(s.magn[axis]));
+
+	ret = as9888_measure(indio_dev, AS9888_MS_SELF_TEST, true, &s, &ts);
+	if (ret)
+		return ret;
+
+	pass &= !as9888_check_magn(&s);
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		u8 ehc = data->ee.axis[axis].ehc;
+
+		h = (s16)le16_to_cpu(s.magn[axis]);
+		res->adj_q8[axis] = as9888_mag_adjust_q8(h, ehc);
+		pass &= as9888_selftest_ok(axis, h, ehc);
+	}
+	res->pass = pass;
+	res->done = true;
+
+	return 0;
+}
+
+static int as9888_selftest(struct iio_dev *indio_dev)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct as9888_selftest res = { };
+	int ret;
+
+	ret = pm_runtime_resume_and_get(data->dev);
+	if (ret)
+		return ret;
+
+	scoped_guard(mutex, &data->lock) {
+		ret = as9888_run_selftest(indio_dev, &res);
+		data->selftest = res;
+	}
+
+	as9888_pm_put(data->dev);
+
+	return ret;
+}
+
+static ssize_t selftest_store(struct device *dev, struct device_attribute *attr,
+			      const char *buf, size_t len)
+{
+	struct iio_dev *indio_dev = dev_to_iio_dev(dev);
+	bool run;
+	int ret;
+
+	ret = kstrtobool(buf, &run);
+	if (ret)
+		return ret;
+	if (!run)
+		return -EINVAL;
+
+	if (!as9888_claim_direct(indio_dev))
+		return -EBUSY;
+
+	ret = as9888_selftest(indio_dev);
+	as9888_release_direct(indio_dev);
+
+	return ret ?: len;
+}
+
+/* " X.XXX": an adjusted reading in LSB, rounded to 1/1000 */
+static int as9888_emit_q8(char *buf, int at, s32 q8)
+{
+	s64 milli = as9888_div_round_s64((s64)q8 * 1000, 1 << 8);
+	u64 abs_milli = milli < 0 ? -milli : milli;
+	u32 frac;
+	u64 whole = div_u64_rem(abs_milli, 1000, &frac);
+
+	return sysfs_emit_at(buf, at, " %s%llu.%03u", milli < 0 ? "-" : "",
+			     whole, frac);
+}
+
+static ssize_t selftest_show(struct device *dev, struct device_attribute *attr,
+			     char *buf)
+{
+	struct as9888_data *data = iio_priv(dev_to_iio_dev(dev));
+	const struct as9888_selftest *res = &data->selftest;
+	int axis, len;
+
+	guard(mutex)(&data->lock);
+
+	if (!res->done)
+		return sysfs_emit(buf, "none\n");
+
+	len = sysfs_emit(buf, "%s", res->pass ? "pass" : "fail");
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		len += as9888_emit_q8(buf, len, res->adj_q8[axis]);
+	len += sysfs_emit_at(buf, len, "\n");
+
+	return len;
+}
+
+static IIO_DEVICE_ATTR_RW(selftest, 0);
+
+static struct attribute *as9888_attrs[] = {
+	&iio_dev_attr_selftest.dev_attr.attr,
+	NULL
+};
+
+static const struct attribute_group as9888_attrs_group = {
+	.attrs = as9888_attrs,
+};
+
+/* Buffer and trigger */
+
+static int as9888_update_scan_mode(struct iio_dev *indio_dev,
+				   const unsigned long *scan_mask)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	guard(mutex)(&data->lock);
+	data->scan_mask = *scan_mask;
+	data->buf_men = *scan_mask & AS9888_SCAN_MAGN_MSK;
+
+	return 0;
+}
+
+static const struct iio_info as9888_info = {
+	.read_raw = as9888_read_raw,
+	.read_avail = as9888_read_avail,
+	.write_raw = as9888_write_raw,
+	.write_raw_get_fmt = as9888_write_raw_get_fmt,
+	.update_scan_mode = as9888_update_scan_mode,
+	.attrs = &as9888_attrs_group,
+};
+
+static s16 as9888_scan_value(const struct as9888_raw_sample *s,
+			     unsigned int bit)
+{
+	switch (bit) {
+	case AS9888_SCAN_ACCEL_X ... AS9888_SCAN_ACCEL_Z:
+		return le16_to_cpu(s->accel[bit - AS9888_SCAN_ACCEL_X]);
+	case AS9888_SCAN_MAGN_X ... AS9888_SCAN_MAGN_Z:
+		return le16_to_cpu(s->magn[bit - AS9888_SCAN_MAGN_X]);
+	case AS9888_SCAN_TEMP:
+		return s->tmps;
+	default:
+		return 0;
+	}
+}
+
+/* Fill data->scan from a checked sample, false if it is no good */
+static bool as9888_fill_scan(struct as9888_data *data,
+			     const struct as9888_raw_sample *s)
+{
+	unsigned int bit, i = 0;
+
+	/* A saturated axis (HOFL) reads -4096 or 4095: pushed as it is */
+	if (data->buf_men && FIELD_GET(AS9888_ST2_HST_MSK, s->st2)) {
+		dev_err_ratelimited(data->dev, "magnetometer not measured\n");
+		return false;
+	}
+
+	/* The timestamp is placed by the IIO core */
+	for_each_set_bit(bit, &data->scan_mask, AS9888_SCAN_TIMESTAMP)
+		data->scan.chans[i++] = as9888_scan_value(s, bit);
+
+	return true;
+}
+
+/* Read the sample whose INT1 edge fired the data-ready trigger */
+static int as9888_collect_sample(struct as9888_data *data,
+				 struct as9888_raw_sample *s)
+{
+	int ret;
+
+	ret = as9888_read_sample(data, s);
+	if (ret)
+		return ret;
+
+	data->pd_since = data->drdy_time;
+
+	ret = as9888_check_sample(data, s);
+	if (ret)
+		return ret;
+
+	as9888_update_temperature(data, s);
+
+	return 0;
+}
+
+/**
+ * as9888_next_sample() - start the next sample of the data-ready trigger
+ * @data: driver data
+ *
+ * Waits for the rest of the sampling period (the wait ends early when the
+ * buffer stops), then starts the next measurement, whose INT1 edge fires
+ * the trigger again.
+ */
+static void as9888_next_sample(struct as9888_data *data)
+{
+	ktime_t next;
+	s64 wait_ns;
+	int i, ret = 0;
+
+	scoped_guard(mutex, &data->lock)
+		next = ktime_add_ns(data->last_start,
+				    div_u64(AS9888_NANO, data->samp_freq));
+
+	wait_ns = ktime_to_ns(ktime_sub(next, ktime_get()));
+	if (wait_ns > 0)
+		wait_event_hrtimeout(data->stop_wq,
+				     !READ_ONCE(data->trig_running),
+				     ns_to_ktime(wait_ns));
+
+	guard(mutex)(&data->lock);
+	for (i = 0; i < AS9888_START_RETRIES && data->trig_running; i++) {
+		ret = as9888_start(data, AS9888_MS_SINGLE, data->buf_men);
+		if (!ret)
+			return;
+	}
+	if (ret)
+		dev_err(data->dev, "data-ready trigger stopped: %d\n", ret);
+}
+
+static irqreturn_t as9888_trigger_handler(int irq, void *p)
+{
+	struct iio_poll_func *pf = p;
+	struct iio_dev *indio_dev = pf->indio_dev;
+	struct as9888_data *data = iio_priv(indio_dev);
+	bool own = iio_trigger_using_own(indio_dev);
+	struct as9888_raw_sample s;
+	s64 ts = pf->timestamp;
+	int ret;
+
+	scoped_guard(mutex, &data->lock) {
+		if (own)
+			ret = as9888_collect_sample(data, &s);
+		else
+			ret = as9888_measure(indio_dev, AS9888_MS_SINGLE,
+					     data->buf_men, &s, &ts);
+
+		if (!ret && as9888_fill_scan(data, &s))
+			as9888_push_to_buffers_with_ts(indio_dev, &data->scan,
+						       sizeof(data->scan), ts);
+	}
+
+	/* Before the next sample, whose INT1 edge must find it done */
+	iio_trigger_notify_done(indio_dev->trig);
+
+	if (own)
+		as9888_next_sample(data);
+
+	return IRQ_HANDLED;
+}
+
+static int as9888_buffer_preenable(struct iio_dev *indio_dev)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	return pm_runtime_resume_and_get(data->dev);
+}
+
+/* Start the data-ready trigger; both run with the buffer lock held */
+static int as9888_trig_start(struct as9888_data *data)
+{
+	int ret;
+
+	lockdep_assert_held(&data->lock);
+
+	WRITE_ONCE(data->trig_running, true);
+	ret = as9888_start(data, AS9888_MS_SINGLE, data->buf_men);
+	if (ret)
+		WRITE_ONCE(data->trig_running, false);
+
+	return ret;
+}
+
+static int as9888_trig_stop(struct as9888_data *data)
+{
+	lockdep_assert_held(&data->lock);
+
+	WRITE_ONCE(data->trig_running, false);
+	wake_up(&data->stop_wq);
+
+	/* Abort a measurement in flight */
+	return as9888_power_down(data);
+}
+
+static int as9888_buffer_postenable(struct iio_dev *indio_dev)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	if (!iio_trigger_using_own(indio_dev))
+		return 0;
+
+	guard(mutex)(&data->lock);
+
+	return as9888_trig_start(data);
+}
+
+static int as9888_buffer_predisable(struct iio_dev *indio_dev)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	if (!iio_trigger_using_own(indio_dev))
+		return 0;
+
+	guard(mutex)(&data->lock);
+
+	return as9888_trig_stop(data);
+}
+
+static int as9888_buffer_postdisable(struct iio_dev *indio_dev)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	as9888_pm_put(data->dev);
+
+	return 0;
+}
+
+static const struct iio_buffer_setup_ops as9888_buffer_ops = {
+	.preenable = as9888_buffer_preenable,
+	.postenable = as9888_buffer_postenable,
+	.predisable = as9888_buffer_predisable,
+	.postdisable = as9888_buffer_postdisable,
+};
+
+static const struct iio_trigger_ops as9888_trigger_ops = {
+	.validate_device = iio_trigger_validate_own_device,
+};
+
+static irqreturn_t as9888_irq_handler(int irq, void *private)
+{
+	struct iio_dev *indio_dev = private;
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	data->drdy_time = ktime_get();
+	data->drdy_ts = iio_get_time_ns(indio_dev);
+
+	if (READ_ONCE(data->trig_running))
+		iio_trigger_poll(data->trig);
+	else
+		complete(&data->drdy);
+
+	return IRQ_HANDLED;
+}
+
+/*
+ * INT1 is the data-ready interrupt. With interrupt names it must be the
+ * one named "INT1" (INT2 is not used); without names the first interrupt
+ * is taken to be INT1. No interrupt: ST1 is polled.
+ */
+static int as9888_get_irq(struct device *dev, int bus_irq)
+{
+	struct fwnode_handle *fwnode = dev_fwnode(dev);
+	int irq;
+
+	if (!fwnode || !fwnode_property_present(fwnode, "interrupt-names"))
+		return bus_irq > 0 ? bus_irq : 0;
+
+	irq = fwnode_irq_get_byname(fwnode, "INT1");
+	if (irq == -EPROBE_DEFER)
+		return irq;
+
+	return irq > 0 ? irq : 0;
+}
+
+static int as9888_setup_irq(struct iio_dev *indio_dev, int irq)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct device *dev = data->dev;
+	u32 irq_type;
+	int ret;
+
+	/* INT1 rises at the end of a measurement, falls on the next MS write */
+	irq_type = irq_get_trigger_type(irq);
+	if (irq_type == IRQF_TRIGGER_NONE)
+		irq_type = IRQF_TRIGGER_RISING;
+	if (irq_type != IRQF_TRIGGER_RISING)
+		return dev_err_probe(dev, -EINVAL,
+				     "INT1 must be rising edge, not 0x%x\n",
+				     irq_type);
+
+	data->irq = irq;
+
+	data->trig = devm_iio_trigger_alloc(dev, "%s-dev%d", indio_dev->name,
+					    iio_device_id(indio_dev));
+	if (!data->trig)
+		return -ENOMEM;
+
+	data->trig->ops = &as9888_trigger_ops;
+	iio_trigger_set_drvdata(data->trig, indio_dev);
+
+	ret = devm_request_irq(dev, irq, as9888_irq_handler, irq_type,
+			       indio_dev->name, indio_dev);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot request INT1\n");
+
+	ret = devm_iio_trigger_register(dev, data->trig);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot register trigger\n");
+
+	indio_dev->trig = iio_trigger_get(data->trig);
+
+	ret = regmap_write(data->regmap, AS9888_REG_INT1EN,
+			   FIELD_PREP(AS9888_INTEN_DR_MSK, 1));
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot enable INT1\n");
+
+	return 0;
+}
+
+/* Power, reset and the factory trim: step 1 of the application note */
+
+static int as9888_power_on(struct as9888_data *data)
+{
+	int ret;
+
+	ret = regulator_bulk_enable(ARRAY_SIZE(data->supplies), data->supplies);
+	if (ret)
+		return ret;
+
+	/* The chip NAKs (I2C) or reads 0xff (SPI) until it has booted */
+	fsleep(AS9888_T_BOOT_US);
+	/* It boots into power-down */
+	data->pd_since = ktime_get();
+
+	return 0;
+}
+
+static void as9888_power_off(void *arg)
+{
+	struct as9888_data *data = arg;
+
+	if (pm_runtime_status_suspended(data->dev))
+		return;
+
+	regulator_bulk_disable(ARRAY_SIZE(data->supplies), data->supplies);
+	pm_runtime_set_suspended(data->dev);
+}
+
+static int as9888_power_init(struct as9888_data *data)
+{
+	struct device *dev = data->dev;
+	unsigned int i;
+	int ret;
+
+	for (i = 0; i < ARRAY_SIZE(data->supplies); i++)
+		data->supplies[i].supply = as9888_supply_names[i];
+
+	ret = devm_regulator_bulk_get(dev, ARRAY_SIZE(data->supplies),
+				      data->supplies);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot get regulators\n");
+
+	ret = as9888_power_on(data);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot enable regulators\n");
+
+	/* Runtime PM status tells as9888_power_off() whether power is on */
+	ret = pm_runtime_set_active(dev);
+	if (ret) {
+		regulator_bulk_disable(ARRAY_SIZE(data->supplies),
+				       data->supplies);
+		return dev_err_probe(dev, ret, "cannot set runtime PM status\n");
+	}
+
+	return devm_add_action_or_reset(dev, as9888_power_off, data);
+}
+
+static int as9888_reset(struct as9888_data *data)
+{
+	struct gpio_desc *reset;
+
+	/* Asserted (RSTN low) when requested */
+	reset = devm_gpiod_get_optional(data->dev, "reset", GPIOD_OUT_HIGH);
+	if (IS_ERR(reset))
+		return dev_err_probe(data->dev, PTR_ERR(reset),
+				     "cannot get reset GPIO\n");
+	if (!reset)
+		return 0;
+
+	fsleep(AS9888_T_RSTL_US);
+	gpiod_set_value_cansleep(reset, 0);
+	fsleep(AS9888_T_BOOT_US);
+	data->pd_since = ktime_get();
+
+	return 0;
+}
+
+/* Steps 1-5..1-29: the whole EEPROM in one burst in EEPROM access mode */
+static int as9888_read_eeprom(struct as9888_data *data,
+			      u8 raw[AS9888_EEPROM_LEN])
+{
+	struct device *dev = data->dev;
+	int ret, ret_pd;
+
+	as9888_wait_pd(data);
+	ret = regmap_write(data->regmap, AS9888_REG_MS, AS9888_MS_EEPROM);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot enter EEPROM mode\n");
+
+	fsleep(AS9888_T_EEP_US);
+	ret = regmap_bulk_read(data->regmap, AS9888_REG_EEPROM, raw,
+			       AS9888_EEPROM_LEN);
+
+	/* EEPROM access mode is left only by writing power-down */
+	ret_pd = as9888_power_down(data);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot read EEPROM\n");
+	if (ret_pd)
+		return dev_err_probe(dev, ret_pd,
+				     "cannot leave EEPROM mode\n");
+
+	return 0;
+}
+
+static int as9888_decode_eeprom(struct as9888_data *data,
+				const u8 raw[AS9888_EEPROM_LEN])
+{
+	struct device *dev = data->dev;
+	unsigned long bits;
+	unsigned int bit;
+	int ret;
+
+	ret = as9888_eeprom_decode(raw, &data->ee);
+
+	bits = data->ee.errors;
+	for_each_set_bit(bit, &bits, BITS_PER_TYPE(data->ee.errors))
+		dev_err(dev, "%s\n", as9888_ee_error_str(BIT(bit)));
+	if (ret)
+		return dev_err_probe(dev, ret, "unusable factory EEPROM %*ph\n",
+				     AS9888_EEPROM_LEN, raw);
+
+	bits = data->ee.warnings;
+	for_each_set_bit(bit, &bits, BITS_PER_TYPE(data->ee.warnings))
+		dev_warn(dev, "%s\n", as9888_ee_warning_str(BIT(bit)));
+
+	return 0;
+}
+
+/* Steps 1-30..1-39 and the read-back check of D10 */
+static int as9888_load_trim(struct as9888_data *data)
+{
+	const struct as9888_eeprom *ee = &data->ee;
+	u8 trim[AS9888_TRIM_LEN] = {
+		[AS9888_REG_REF1 - AS9888_REG_REF1] = ee->ref1,
+		[AS9888_REG_REF2 - AS9888_REG_REF1] = ee->ref2,
+		[AS9888_REG_REF3 - AS9888_REG_REF1] = ee->ref3,
+		[AS9888_REG_OSC - AS9888_REG_REF1] = ee->osc,
+	};
+	int axis, ret;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		trim[AS9888_REG_AGA(axis) - AS9888_REG_REF1] = ee->axis[axis].ga;
+		trim[AS9888_REG_ADA(axis) - AS9888_REG_REF1] = ee->axis[axis].da;
+	}
+
+	guard(mutex)(&data->lock);
+
+	ret = as9888_write_trim(data, AS9888_REG_REF1, trim, sizeof(trim));
+	if (ret)
+		return dev_err_probe(data->dev, ret, "cannot load trim\n");
+
+	return 0;
+}
+
+static int as9888_chip_init(struct as9888_data *data)
+{
+	u8 raw[AS9888_EEPROM_LEN];
+	unsigned int wia;
+	int ret;
+
+	ret = as9888_reset(data);
+	if (ret)
+		return ret;
+
+	ret = regmap_read(data->regmap, AS9888_REG_WIA, &wia);
+	if (ret)
+		return dev_err_probe(data->dev, ret, "cannot read WIA\n");
+	if (wia != AS9888_WIA_VAL)
+		return dev_err_probe(data->dev, -ENODEV,
+				     "WIA reads 0x%02x, not an AS9888 (0x%02x)\n",
+				     wia, AS9888_WIA_VAL);
+
+	ret = as9888_read_eeprom(data, raw);
+	if (ret)
+		return ret;
+
+	ret = as9888_decode_eeprom(data, raw);
+	if (ret)
+		return ret;
+
+	return as9888_load_trim(data);
+}
+
+/*
+ * The EEPROM as an NVMEM device "as9888-eeprom<N>", N the number of the
+ * IIO device; reads are served from the copy taken at probe.
+ */
+static int as9888_nvmem_read(void *priv, unsigned int offset, void *val,
+			     size_t bytes)
+{
+	struct as9888_data *data = priv;
+
+	if (offset >= AS9888_EEPROM_LEN || bytes > AS9888_EEPROM_LEN - offset)
+		return -EINVAL;
+
+	memcpy(val, &data->ee.raw[offset], bytes);
+
+	return 0;
+}
+
+static int as9888_nvmem_register(struct iio_dev *indio_dev)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct nvmem_config config = {
+		.dev = data->dev,
+		.name = AS9888_DRV_NAME "-eeprom",
+		.id = iio_device_id(indio_dev),
+		.owner = THIS_MODULE,
+		.type = NVMEM_TYPE_EEPROM,
+		.read_only = true,
+		.ignore_wp = true,
+		.word_size = 1,
+		.stride = 1,
+		.size = AS9888_EEPROM_LEN,
+		.reg_read = as9888_nvmem_read,
+		.priv = data,
+	};
+	struct nvmem_device *nvmem;
+
+	if (!IS_ENABLED(CONFIG_NVMEM))
+		return 0;
+
+	nvmem = devm_nvmem_register(data->dev, &config);
+	if (IS_ERR(nvmem))
+		return dev_err_probe(data->dev, PTR_ERR(nvmem),
+				     "cannot register EEPROM\n");
+
+	return 0;
+}
+
+int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
+{
+	struct iio_dev *indio_dev;
+	struct as9888_data *data;
+	int ret;
+
+	indio_dev = devm_iio_device_alloc(dev, sizeof(*data));
+	if (!indio_dev)
+		return -ENOMEM;
+
+	data = iio_priv(indio_dev);
+	data->dev = dev;
+	data->regmap = regmap;
+	data->samp_freq = AS9888_SAMP_FREQ_DEFAULT;
+	init_completion(&data->drdy);
+	init_waitqueue_head(&data->stop_wq);
+	dev_set_drvdata(dev, indio_dev);
+
+	ret = devm_mutex_init(dev, &data->lock);
+	if (ret)
+		return ret;
+
+	ret = iio_read_mount_matrix(dev, &data->orientation);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot read mount matrix\n");
+
+	indio_dev->name = AS9888_DRV_NAME;
+	indio_dev->info = &as9888_info;
+	indio_dev->channels = as9888_channels;
+	indio_dev->num_channels = ARRAY_SIZE(as9888_channels);
+	indio_dev->modes = INDIO_DIRECT_MODE;
+
+	ret = as9888_power_init(data);
+	if (ret)
+		return ret;
+
+	ret = as9888_chip_init(data);
+	if (ret)
+		return ret;
+
+	irq = as9888_get_irq(dev, irq);
+	if (irq < 0)
+		return dev_err_probe(dev, irq, "cannot get INT1\n");
+	if (irq) {
+		ret = as9888_setup_irq(indio_dev, irq);
+		if (ret)
+			return ret;
+	}
+
+	ret = devm_iio_triggered_buffer_setup(dev, indio_dev,
+					      iio_pollfunc_store_time,
+					      as9888_trigger_handler,
+					      &as9888_buffer_ops);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot set up buffer\n");
+
+	ret = as9888_nvmem_register(indio_dev);
+	if (ret)
+		return ret;
+
+	pm_runtime_set_autosuspend_delay(dev, AS9888_AUTOSUSPEND_MS);
+	pm_runtime_use_autosuspend(dev);
+	ret = devm_pm_runtime_enable(dev);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot enable runtime PM\n");
+
+	return devm_iio_device_register(dev, indio_dev);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_core_probe, AS9888_NS);
+
+/* Power management */
+
+static int as9888_runtime_suspend(struct device *dev)
+{
+	struct as9888_data *data = iio_priv(dev_get_drvdata(dev));
+	int ret;
+
+	regcache_cache_only(data->regmap, true);
+	regcache_mark_dirty(data->regmap);
+
+	ret = regulator_bulk_disable(ARRAY_SIZE(data->supplies),
+				     data->supplies);
+	if (ret)
+		regcache_cache_only(data->regmap, false);
+
+	return ret;
+}
+
+/*
+ * Power returns, so the chip has lost its trim, DAC and interrupt setup:
+ * after t_BOOT, rewrite them from the register cache, in power-down.
+ */
+static int as9888_runtime_resume(struct device *dev)
+{
+	struct as9888_data *data = iio_priv(dev_get_drvdata(dev));
+	int ret;
+
+	guard(mutex)(&data->lock);
+
+	ret = as9888_power_on(data);
+	if (ret)
+		return ret;
+
+	regcache_cache_only(data->regmap, false);
+	as9888_wait_pd(data);
+	ret = regcache_sync(data->regmap);
+	if (ret) {
+		regcache_cache_only(data->regmap, true);
+		regulator_bulk_disable(ARRAY_SIZE(data->supplies),
+				       data->supplies);
+	}
+
+	return ret;
+}
+
+/* A running data-ready trigger is stopped over system sleep */
+static int as9888_suspend(struct device *dev)
+{
+	struct as9888_data *data = iio_priv(dev_get_drvdata(dev));
+
+	scoped_guard(mutex, &data->lock) {
+		data->trig_resume = data->trig_running;
+		if (data->trig_resume)
+			as9888_trig_stop(data);
+	}
+
+	return pm_runtime_force_suspend(dev);
+}
+
+static int as9888_resume(struct device *dev)
+{
+	struct as9888_data *data = iio_priv(dev_get_drvdata(dev));
+	int ret;
+
+	ret = pm_runtime_force_resume(dev);
+	if (ret)
+		return ret;
+
+	guard(mutex)(&data->lock);
+
+	if (!data->trig_resume)
+		return 0;
+
+	data->trig_resume = false;
+
+	return as9888_trig_start(data);
+}
+
+const struct dev_pm_ops as9888_pm_ops = {
+	SYSTEM_SLEEP_PM_OPS(as9888_suspend, as9888_resume)
+	RUNTIME_PM_OPS(as9888_runtime_suspend, as9888_runtime_resume, NULL)
+};
+EXPORT_SYMBOL_NS_GPL(as9888_pm_ops, AS9888_NS);
+
+MODULE_DESCRIPTION("ALSEN AS9888 accelerometer/magnetometer core driver");
+MODULE_LICENSE("GPL");
+MODULE_IMPORT_NS(AS9888_NS);
