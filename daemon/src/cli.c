@@ -4,6 +4,7 @@
 #include <getopt.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -24,6 +25,12 @@ enum {
 	OPT_TEMPERATURE,
 	OPT_VERBOSE,
 	OPT_HELP,
+	OPT_I2C_DEV,
+	OPT_I2C_ADDRESS,
+	OPT_GPIOCHIP,
+	OPT_RSTN_LINE,
+	OPT_INT1_LINE,
+	OPT_INT2_LINE,
 };
 
 static const struct option long_opts[] = {
@@ -42,6 +49,12 @@ static const struct option long_opts[] = {
 	{ "temperature", required_argument, NULL, OPT_TEMPERATURE },
 	{ "verbose", no_argument, NULL, OPT_VERBOSE },
 	{ "help", no_argument, NULL, OPT_HELP },
+	{ "i2c-dev", required_argument, NULL, OPT_I2C_DEV },
+	{ "i2c-address", required_argument, NULL, OPT_I2C_ADDRESS },
+	{ "gpiochip", required_argument, NULL, OPT_GPIOCHIP },
+	{ "rstn-line", required_argument, NULL, OPT_RSTN_LINE },
+	{ "int1-line", required_argument, NULL, OPT_INT1_LINE },
+	{ "int2-line", required_argument, NULL, OPT_INT2_LINE },
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -105,6 +118,21 @@ static int parse_gravity(const char *s, int8_t g[3])
 	return 0;
 }
 
+/* An I2C address the chip can have: 0x0c..0x0f (CAD1/CAD0) */
+static int parse_address(const char *s, unsigned int *address)
+{
+	unsigned long v;
+	char *end;
+
+	errno = 0;
+	v = strtoul(s, &end, 0);
+	if (errno || end == s || *end || v < 0x0c || v > 0x0f)
+		return -EINVAL;
+	*address = (unsigned int)v;
+
+	return 0;
+}
+
 static const char *const commands[] = {
 	[CLI_HELP] = "help",
 	[CLI_FACTORY_TEST] = "factory-test",
@@ -122,6 +150,12 @@ static bool option_allowed(enum cli_command cmd, int opt)
 	case OPT_BACKEND:
 	case OPT_UNIT:
 	case OPT_SIM_CLOCK:
+	case OPT_I2C_DEV:
+	case OPT_I2C_ADDRESS:
+	case OPT_GPIOCHIP:
+	case OPT_RSTN_LINE:
+	case OPT_INT1_LINE:
+	case OPT_INT2_LINE:
 		return cmd == CLI_FACTORY_TEST || cmd == CLI_RESTORE;
 	case OPT_JSON:
 		return cmd == CLI_FACTORY_TEST || cmd == CLI_SHOW;
@@ -143,6 +177,11 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 
 	memset(o, 0, sizeof(*o));
 	o->record_path = CLI_DEFAULT_RECORD;
+	o->raw.i2c_dev = CLI_DEFAULT_I2C_DEV;
+	o->raw.address = CLI_DEFAULT_I2C_ADDRESS;
+	o->raw.rstn = RAW_LINE_NONE;
+	o->raw.int1 = RAW_LINE_NONE;
+	o->raw.int2 = RAW_LINE_NONE;
 	ftest_opts_default(&o->ftest);
 
 	if (argc < 2)
@@ -175,9 +214,33 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 			o->record_path = optarg;
 			break;
 		case OPT_BACKEND:
-			if (strcmp(optarg, "sim"))
-				return bad(err, errlen, "unknown backend \"%s\" (this build has: sim)",
+			if (!strcmp(optarg, "sim"))
+				o->backend = CLI_BACKEND_SIM;
+			else if (!strcmp(optarg, "raw"))
+				o->backend = CLI_BACKEND_RAW;
+			else
+				return bad(err, errlen, "unknown backend \"%s\" (sim or raw)",
 					   optarg);
+			break;
+		case OPT_I2C_DEV:
+			o->raw.i2c_dev = optarg;
+			break;
+		case OPT_I2C_ADDRESS:
+			if (parse_address(optarg, &o->raw.address))
+				return bad(err, errlen, "--i2c-address takes 0x0c..0x0f, not \"%s\"",
+					   optarg);
+			break;
+		case OPT_GPIOCHIP:
+			o->raw.gpiochip = optarg;
+			break;
+		case OPT_RSTN_LINE:
+		case OPT_INT1_LINE:
+		case OPT_INT2_LINE:
+			if (cli_parse_fixed(optarg, 0, 0, 4095, &v))
+				return bad(err, errlen, "%s takes a line offset 0..4095, not \"%s\"",
+					   argv[optind - 2], optarg);
+			*(opt == OPT_RSTN_LINE ? &o->raw.rstn :
+			  opt == OPT_INT1_LINE ? &o->raw.int1 : &o->raw.int2) = (int)v;
 			break;
 		case OPT_UNIT:
 			o->unit_path = optarg;
@@ -249,6 +312,12 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	}
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
+	if (o->backend == CLI_BACKEND_RAW && (o->unit_path || o->virtual_clock))
+		return bad(err, errlen, "--unit and --sim-clock are for --backend sim");
+	if (o->backend == CLI_BACKEND_SIM &&
+	    (o->raw.gpiochip || o->raw.rstn >= 0 || o->raw.int1 >= 0 ||
+	     o->raw.int2 >= 0 || strcmp(o->raw.i2c_dev, CLI_DEFAULT_I2C_DEV)))
+		return bad(err, errlen, "--i2c-dev, --gpiochip and the line options are for --backend raw");
 
 	return 0;
 }

@@ -7,9 +7,17 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "backend_raw.h"
 #include "ftest.h"
 
 #define CLI_DEFAULT_RECORD	"/var/lib/as9888/calibration"
+#define CLI_DEFAULT_I2C_DEV	"/dev/i2c-0"
+#define CLI_DEFAULT_I2C_ADDRESS	0x0c
+
+enum cli_backend {
+	CLI_BACKEND_SIM = 0,
+	CLI_BACKEND_RAW,
+};
 
 enum cli_command {
 	CLI_HELP = 0,
@@ -22,6 +30,8 @@ enum cli_command {
  * struct cli_opts - everything the command line says
  * @command:		what to do
  * @record_path:	calibration record
+ * @backend:		how the chip is reached
+ * @raw:		where, for the raw backend
  * @unit_path:		simulated unit (NULL: built-in)
  * @virtual_clock:	simulator in virtual time
  * @json:		JSON output
@@ -33,6 +43,8 @@ enum cli_command {
 struct cli_opts {
 	enum cli_command command;
 	const char *record_path;
+	enum cli_backend backend;
+	struct backend_raw_opts raw;
 	const char *unit_path;
 	bool virtual_clock;
 	bool json;

@@ -12,6 +12,7 @@
 
 #include "as9888_regs.h"
 #include "atomic_file.h"
+#include "backend_raw.h"
 #include "backend_sim.h"
 #include "cli.h"
 #include "ftest.h"
@@ -36,10 +37,20 @@ static const char usage_text[] =
 "\n"
 "Common options:\n"
 "  --record PATH        calibration record (default " CLI_DEFAULT_RECORD ")\n"
-"  --backend sim        chip access: the simulator (the only backend built)\n"
+"  --backend sim|raw    chip access: the simulator (default), or the chip on\n"
+"                       an I2C bus through i2c-dev with the kernel driver\n"
+"                       unbound, its pins through libgpiod\n"
 "  --unit FILE          simulated unit description (default: built-in unit)\n"
 "  --sim-clock real|virtual  simulator time base (default real)\n"
 "  --json               JSON output (factory-test, show)\n"
+"\n"
+"raw backend options:\n"
+"  --i2c-dev PATH       i2c-dev node (default " CLI_DEFAULT_I2C_DEV ")\n"
+"  --i2c-address ADDR   0x0c..0x0f (default 0x0c)\n"
+"  --gpiochip CHIP      GPIO chip of the lines below\n"
+"  --rstn-line N, --int1-line N, --int2-line N\n"
+"                       line offsets; a pin not given is not monitored (its\n"
+"                       check is skipped, DRDY is polled without INT1)\n"
 "\n"
 "factory-test options:\n"
 "  --samples N          samples averaged per level measurement (10..4096,\n"
@@ -68,7 +79,10 @@ static int open_backend(const struct cli_opts *o, struct transport **t)
 	char err[ERR_LEN];
 	int ret;
 
-	ret = backend_sim_open(&sim, t, err, sizeof(err));
+	if (o->backend == CLI_BACKEND_RAW)
+		ret = backend_raw_open(&o->raw, t, err, sizeof(err));
+	else
+		ret = backend_sim_open(&sim, t, err, sizeof(err));
 	if (ret)
 		fprintf(stderr, "as9888-calibd: %s\n", err);
 

@@ -53,6 +53,16 @@ for bad in "--samples 9" "--samples 4097" "--samples ten" "--fluctuation -1" \
 		eval '[ $rc -eq 2 ] && [ -s "$work/err" ] && [ ! -e "$rec" ]'
 done
 
+run factory-test --backend raw --i2c-dev "$work/no-such-i2c" --record "$rec"
+check "raw backend without the bus: exit 1 naming the device" \
+	eval '[ $rc -eq 1 ] && says "cannot open $work/no-such-i2c" err && [ ! -e "$rec" ]'
+run factory-test --backend raw --unit "$work/x" --record "$rec"
+check "raw backend with a sim option: exit 2" test $rc -eq 2
+run factory-test --backend sim --int1-line 3 --record "$rec"
+check "sim backend with a raw option: exit 2" test $rc -eq 2
+run factory-test --backend raw --i2c-address 0x10 --record "$rec"
+check "raw backend, address outside 0x0c..0x0f: exit 2" test $rc -eq 2
+
 run factory-test $vt --record "$rec" --json
 check "factory-test --json: pass, exit 0" test $rc -eq 0
 check "JSON report has the documented fields" json \
