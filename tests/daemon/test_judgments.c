@@ -1,0 +1,286 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Every judgment of the application note made to fail: the simulated chip
+ * behind a tampering transport that changes what chosen register reads
+ * return (a status bit, a data value in one sample, a read-back), and the
+ * factory test must fail at exactly the judgment's step.
+ *
+ * Sample bursts (one 16-byte read of ST1..ST2) are numbered from 0: burst 0
+ * is the magnetometer measurement of step 2, burst 1 the self-test, bursts
+ * 2..11 the first level run (N = 10), bursts 12..21 the second.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "as9888_regs.h"
+#include "as9888_unit.h"
+#include "backend_sim.h"
+#include "ftest.h"
+
+#define ANY	-1
+#define PASS1	2
+#define PASS2	12
+
+/*
+ * Replace the byte at @reg with @value (and @reg + 1 with @value_hi when
+ * @wide) in sample bursts @first..@last, or, for @burst == false, in the
+ * @nth read (from 1) that covers @reg.
+ */
+struct tamper_rule {
+	uint8_t reg;
+	int value;
+	bool wide;
+	bool burst;
+	int first;
+	int last;
+	int nth;
+};
+
+struct tamper {
+	struct transport base;
+	struct transport *inner;
+	const struct tamper_rule *rule;
+	int bursts;
+	int covering_reads;
+};
+
+static struct tamper *to_tamper(struct transport *t)
+{
+	return (struct tamper *)t;
+}
+
+static int tamper_read(struct transport *t, uint8_t reg, uint8_t *buf,
+		       size_t len)
+{
+	struct tamper *x = to_tamper(t);
+	const struct tamper_rule *r = x->rule;
+	bool hit = false;
+	int ret;
+
+	ret = transport_read(x->inner, reg, buf, len);
+	if (ret)
+		return ret;
+
+	if (reg == AS9888_REG_ST1 && len == AS9888_SAMPLE_LEN) {
+		hit = r->burst && x->bursts >= r->first &&
+		      (r->last == ANY || x->bursts <= r->last);
+		x->bursts++;
+	} else if (!r->burst && r->reg >= reg && r->reg < reg + len) {
+		hit = ++x->covering_reads == r->nth;
+	}
+	if (hit) {
+		buf[r->reg - reg] = (uint8_t)r->value;
+		if (r->wide)
+			buf[r->reg - reg + 1] = (uint8_t)((unsigned int)r->value >> 8);
+	}
+
+	return 0;
+}
+
+static int tamper_write(struct transport *t, uint8_t reg, const uint8_t *buf,
+			size_t len)
+{
+	return transport_write(to_tamper(t)->inner, reg, buf, len);
+}
+
+static int tamper_set_rstn(struct transport *t, bool level)
+{
+	struct transport *in = to_tamper(t)->inner;
+
+	return in->ops->set_rstn(in, level);
+}
+
+static bool tamper_monitored(struct transport *t, enum transport_pin pin)
+{
+	struct transport *in = to_tamper(t)->inner;
+
+	return in->ops->pin_monitored(in, pin);
+}
+
+static int tamper_wait_pin(struct transport *t, enum transport_pin pin,
+			   uint64_t timeout_ns)
+{
+	struct transport *in = to_tamper(t)->inner;
+
+	return in->ops->wait_pin(in, pin, timeout_ns);
+}
+
+static uint64_t tamper_now(struct transport *t)
+{
+	return transport_now_ns(to_tamper(t)->inner);
+}
+
+static void tamper_sleep(struct transport *t, uint64_t ns)
+{
+	transport_sleep_ns(to_tamper(t)->inner, ns);
+}
+
+static void tamper_destroy(struct transport *t)
+{
+	transport_destroy(to_tamper(t)->inner);
+}
+
+static const struct transport_ops tamper_ops = {
+	.read = tamper_read,
+	.write = tamper_write,
+	.set_rstn = tamper_set_rstn,
+	.pin_monitored = tamper_monitored,
+	.wait_pin = tamper_wait_pin,
+	.now_ns = tamper_now,
+	.sleep_ns = tamper_sleep,
+	.destroy = tamper_destroy,
+};
+
+struct judgment_case {
+	const char *step;
+	const char *name_part;
+	struct tamper_rule rule;
+};
+
+#define BURST(r, v, f, l)	{ .reg = (r), .value = (v), .burst = true, .first = (f), .last = (l) }
+#define BURST16(r, v, f, l)	{ .reg = (r), .value = (v), .wide = true, .burst = true, .first = (f), .last = (l) }
+#define NTH(r, v, n)		{ .reg = (r), .value = (v), .nth = (n) }
+
+#define HX	AS9888_REG_HXL
+#define HY	(AS9888_REG_HXL + 2)
+#define HZ	(AS9888_REG_HXL + 4)
+#define AX	AS9888_REG_A1XL
+#define AY	(AS9888_REG_A1XL + 2)
+#define AZ	(AS9888_REG_A1XL + 4)
+
+static const struct judgment_case cases[] = {
+	/* step 1: the trim read-back (D10) */
+	{ "1-39", "R/W check", NTH(AS9888_REG_AXGA + 1, 0x00, 1) },
+	/* step 2: normal magnetometer measurement */
+	{ "2-5", "INT1ST", NTH(AS9888_REG_INT1ST, 0x00, 1) },
+	{ "2-6", "ST1", BURST(AS9888_REG_ST1, 0x03, 0, 0) },
+	{ "2-7", "magnetometer X", BURST16(HX, 4095, 0, 0) },
+	{ "2-7", "magnetometer X", BURST16(HX, -4096, 0, 0) },
+	{ "2-9", "magnetometer Y", BURST16(HY, 4095, 0, 0) },
+	{ "2-11", "magnetometer Z", BURST16(HZ, -4096, 0, 0) },
+	{ "2-13", "ST2", BURST(AS9888_REG_ST2, 0x08, 0, 0) },
+	/* self-test: EHC X 0x80 (x1.0), Y 0x85, Z 0x7b */
+	{ "2-16", "ST1", BURST(AS9888_REG_ST1, 0x00, 1, 1) },
+	{ "2-17", "self-test X", BURST16(HX, 101, 1, 1) },
+	{ "2-17", "self-test X", BURST16(HX, -101, 1, 1) },
+	{ "2-19", "self-test Y", BURST16(HY, 100, 1, 1) },	/* 102.3 adjusted */
+	{ "2-21", "self-test Z", BURST16(HZ, 1030, 1, 1) },	/* 1010.9 adjusted */
+	{ "2-21", "self-test Z", BURST16(HZ, 305, 1, 1) },	/* 299.3 adjusted */
+	{ "2-23", "ST2", BURST(AS9888_REG_ST2, 0x00 | 0x08, 1, 1) },
+	/* step 3, first level run */
+	{ "3-4", "ST1", BURST(AS9888_REG_ST1, 0x03, PASS1 + 4, PASS1 + 4) },
+	{ "3-5", "TMPS", BURST(AS9888_REG_TMPS, 0xe1, PASS1 + 2, PASS1 + 2) },
+	{ "3-5", "TMPS", BURST(AS9888_REG_TMPS, 0x27, PASS1, PASS1) },
+	{ "3-6", "EMPT", BURST(AS9888_REG_EMPT, 0x01, PASS1 + 9, PASS1 + 9) },
+	{ "3-13", "ST2", BURST(AS9888_REG_ST2, 0x00, PASS1 + 1, PASS1 + 1) },
+	{ "3-14", "maximum of X", BURST16(AX, 2047, PASS1 + 3, PASS1 + 3) },
+	{ "3-15", "maximum of Y", BURST16(AY, 2047, PASS1 + 3, PASS1 + 3) },
+	{ "3-16", "maximum of Z", BURST16(AZ, 2047, PASS1 + 3, PASS1 + 3) },
+	{ "3-17", "minimum of X", BURST16(AX, -2048, PASS1 + 5, PASS1 + 5) },
+	{ "3-18", "minimum of Y", BURST16(AY, -2048, PASS1 + 5, PASS1 + 5) },
+	{ "3-19", "minimum of Z", BURST16(AZ, -2048, PASS1 + 5, PASS1 + 5) },
+	{ "3-20", "fluctuation of X", BURST16(AX, 16, PASS1 + 6, PASS1 + 6) },
+	{ "3-21", "fluctuation of Y", BURST16(AY, -17, PASS1 + 6, PASS1 + 6) },
+	{ "3-22", "fluctuation of Z", BURST16(AZ, 280, PASS1 + 6, PASS1 + 6) },
+	/* the DAC read-back is the second read covering AXDA */
+	{ "3-26", "DAC written", NTH(AS9888_REG_AXDA + 2, 0x80, 2) },
+	/* step 3, second level run with DACopt */
+	{ "3-29", "ST1", BURST(AS9888_REG_ST1, 0x03, PASS2 + 4, PASS2 + 4) },
+	{ "3-30", "TMPS", BURST(AS9888_REG_TMPS, 0xe1, PASS2, PASS2) },
+	{ "3-31", "EMPT", BURST(AS9888_REG_EMPT, 0x80, PASS2 + 9, PASS2 + 9) },
+	{ "3-38", "ST2", BURST(AS9888_REG_ST2, 0x0a, PASS2 + 1, PASS2 + 1) },
+	{ "3-39", "maximum of X", BURST16(AX, 2047, PASS2 + 3, PASS2 + 3) },
+	{ "3-40", "maximum of Y", BURST16(AY, 2047, PASS2 + 3, PASS2 + 3) },
+	{ "3-41", "maximum of Z", BURST16(AZ, 2047, PASS2 + 3, PASS2 + 3) },
+	{ "3-42", "minimum of X", BURST16(AX, -2048, PASS2 + 5, PASS2 + 5) },
+	{ "3-43", "minimum of Y", BURST16(AY, -2048, PASS2 + 5, PASS2 + 5) },
+	{ "3-44", "minimum of Z", BURST16(AZ, -2048, PASS2 + 5, PASS2 + 5) },
+	{ "3-45", "fluctuation of X", BURST16(AX, -16, PASS2 + 6, PASS2 + 6) },
+	{ "3-46", "fluctuation of Y", BURST16(AY, 17, PASS2 + 6, PASS2 + 6) },
+	{ "3-47", "fluctuation of Z", BURST16(AZ, 240, PASS2 + 6, PASS2 + 6) },
+};
+
+static void run_case(const struct judgment_case *c)
+{
+	struct ftest_result res = { 0 };
+	const struct judgment *j;
+	struct as9888_unit unit;
+	struct tamper x = { 0 };
+	struct ftest_opts o;
+	char err[256];
+
+	as9888_unit_default(&unit);
+	unit.noise_mlsb = 0;	/* fluctuation 0 unless tampered */
+	assert_int_equal(backend_sim_open_unit(&unit, true, &x.inner, err,
+					       sizeof(err)), 0);
+	x.base.ops = &tamper_ops;
+	x.base.name = "tamper";
+	x.rule = &c->rule;
+	ftest_opts_default(&o);
+
+	ftest_run(&x.base, &o, &res);
+	transport_destroy(&x.base);
+
+	j = report_first_failure(&res.report);
+	if (!j || strcmp(j->step, c->step) ||
+	    (!strstr(j->name, c->name_part) && !strstr(j->measured, c->name_part))) {
+		report_print_text(stderr, &res.report);
+		fail_msg("tampering 0x%02x = %d: expected failure at %s (%s), got %s",
+			 c->rule.reg, c->rule.value, c->step, c->name_part,
+			 j ? j->step : "none");
+	}
+	assert_false(res.have_calibration);
+	ftest_result_free(&res);
+}
+
+static void untampered_unit_passes(void **state)
+{
+	static const struct judgment_case none = {
+		"", "", { .reg = 0x7f, .value = 0, .nth = 1000 },
+	};
+	struct ftest_result res = { 0 };
+	struct as9888_unit unit;
+	struct tamper x = { 0 };
+	struct ftest_opts o;
+	char err[256];
+
+	as9888_unit_default(&unit);
+	unit.noise_mlsb = 0;
+	assert_int_equal(backend_sim_open_unit(&unit, true, &x.inner, err,
+					       sizeof(err)), 0);
+	x.base.ops = &tamper_ops;
+	x.rule = &none.rule;
+	ftest_opts_default(&o);
+	ftest_run(&x.base, &o, &res);
+	transport_destroy(&x.base);
+	assert_null(report_first_failure(&res.report));
+	/* the burst numbering the cases rely on */
+	assert_int_equal(x.bursts, PASS2 + 10);
+	ftest_result_free(&res);
+}
+
+static void every_judgment_fails(void **state)
+{
+	unsigned int i;
+
+	for (i = 0; i < sizeof(cases) / sizeof(cases[0]); i++)
+		run_case(&cases[i]);
+	print_message("%zu tampered judgments failed at their steps\n",
+		      sizeof(cases) / sizeof(cases[0]));
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(untampered_unit_passes),
+		cmocka_unit_test(every_judgment_fails),
+	};
+
+	return cmocka_run_group_tests_name("judgments", tests, NULL, NULL);
+}
