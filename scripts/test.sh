@@ -72,6 +72,7 @@ stage "setup" "$top/scripts/setup.sh"
 stage "meson test (ASan+UBSan)" meson_suite
 stage "fuzz record parser (60 s)" "$top/scripts/fuzz.sh" 60
 stage "release build" release_build
+stage "gpio.c against libgpiod 2.x" "$top/scripts/libgpiod2-check.sh"
 stage "systemd units" "$top/scripts/check-units.sh" "$build/release/daemon/as9888-calibd"
 stage "factory-test benchmark" benchmark
 

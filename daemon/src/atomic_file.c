@@ -207,3 +207,22 @@ int ensure_parent_dir(const char *path, mode_t mode, char *err, size_t errlen)
 
 	return 0;
 }
+
+int durable_rename(const char *from, const char *to, char *err, size_t errlen)
+{
+	char dir[PATH_MAX], base[PATH_MAX];
+	int dfd, ret;
+
+	ret = split_path(to, dir, base, err, errlen);
+	if (ret)
+		return ret;
+	if (rename(from, to))
+		return failed(err, errlen, "cannot rename to", to, errno);
+	dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	if (dfd < 0)
+		return failed(err, errlen, "cannot open directory", dir, errno);
+	ret = fsync(dfd) ? failed(err, errlen, "cannot flush directory", dir, errno) : 0;
+	close(dfd);
+
+	return ret;
+}

@@ -27,6 +27,9 @@ int atomic_write_file(const char *path, const void *data, size_t len,
 long read_file_nofollow(const char *path, char *buf, size_t max, char *err,
 			size_t errlen);
 
+/* rename(2) @from to @to (same directory) and fsync the directory */
+int durable_rename(const char *from, const char *to, char *err, size_t errlen);
+
 /* Create the directory of @path (one level) with @mode if it is missing. */
 int ensure_parent_dir(const char *path, mode_t mode, char *err, size_t errlen);
 

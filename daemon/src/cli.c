@@ -138,11 +138,20 @@ static const char *const commands[] = {
 	[CLI_FACTORY_TEST] = "factory-test",
 	[CLI_RESTORE] = "restore",
 	[CLI_SHOW] = "show",
+	[CLI_RECALIBRATE] = "recalibrate",
+	[CLI_ROLLBACK] = "rollback",
+	[CLI_CHECK] = "check",
 };
 
 /* Which options each command takes */
 static bool option_allowed(enum cli_command cmd, int opt)
 {
+	bool chip = cmd == CLI_FACTORY_TEST || cmd == CLI_RESTORE ||
+		    cmd == CLI_RECALIBRATE || cmd == CLI_ROLLBACK ||
+		    cmd == CLI_CHECK;
+	bool level = cmd == CLI_FACTORY_TEST || cmd == CLI_RECALIBRATE ||
+		     cmd == CLI_CHECK;
+
 	switch (opt) {
 	case OPT_RECORD:
 	case OPT_HELP:
@@ -156,13 +165,19 @@ static bool option_allowed(enum cli_command cmd, int opt)
 	case OPT_RSTN_LINE:
 	case OPT_INT1_LINE:
 	case OPT_INT2_LINE:
-		return cmd == CLI_FACTORY_TEST || cmd == CLI_RESTORE;
+		return chip;
 	case OPT_JSON:
-		return cmd == CLI_FACTORY_TEST || cmd == CLI_SHOW;
+		return level || cmd == CLI_SHOW;
 	case OPT_TEMPERATURE:
 		return cmd == CLI_SHOW;
 	case OPT_VERBOSE:
 		return cmd == CLI_RESTORE;
+	case OPT_SAMPLES:
+	case OPT_FLUCTUATION:
+	case OPT_LPF:
+	case OPT_GRAVITY:
+	case OPT_STABLE_TIMEOUT:
+		return level;
 	default:
 		return cmd == CLI_FACTORY_TEST;
 	}
@@ -276,6 +291,7 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 				return bad(err, errlen, "--fluctuation takes an integer 0..4095, not \"%s\"",
 					   optarg);
 			o->ftest.fluctuation = (uint32_t)v;
+			o->fluctuation_given = true;
 			break;
 		case OPT_LPF:
 			o->ftest.lpf = true;

@@ -24,6 +24,9 @@ enum cli_command {
 	CLI_FACTORY_TEST,
 	CLI_RESTORE,
 	CLI_SHOW,
+	CLI_RECALIBRATE,
+	CLI_ROLLBACK,
+	CLI_CHECK,
 };
 
 /**
@@ -36,6 +39,7 @@ enum cli_command {
  * @virtual_clock:	simulator in virtual time
  * @json:		JSON output
  * @verbose:		say what was done on success
+ * @fluctuation_given:	--fluctuation was given
  * @temperature_given:	--temperature was given
  * @temperature_mdegc:	its value
  * @ftest:		factory-test options
@@ -49,6 +53,7 @@ struct cli_opts {
 	bool virtual_clock;
 	bool json;
 	bool verbose;
+	bool fluctuation_given;
 	bool temperature_given;
 	int32_t temperature_mdegc;
 	struct ftest_opts ftest;

@@ -28,6 +28,7 @@ struct ftest_ctx {
 	const struct ftest_opts *o;
 	struct ftest_result *res;
 	bool stop;
+	uint8_t dac[AS9888_AXES];	/* the DAC values in the chip */
 };
 
 static bool judge(struct ftest_ctx *x, const char *step, const char *name,
@@ -147,6 +148,17 @@ static int step1_eeprom(struct ftest_ctx *x)
 	      "gain 7..43, DAC 0..67/128..195, not blank",
 	      "fingerprint %016llx",
 	      (unsigned long long)record_fingerprint(raw));
+	if (x->o->expect_eeprom &&
+	    !judge(x, "1-27", "chip matches the calibration record",
+		   !memcmp(raw, x->o->expect_eeprom, AS9888_EEPROM_LEN),
+		   "EEPROM equals the record's",
+		   "chip %016llx, record %016llx",
+		   (unsigned long long)record_fingerprint(raw),
+		   (unsigned long long)record_fingerprint(x->o->expect_eeprom))) {
+		/* never touch another chip's calibration */
+		x->stop = true;
+		return -ENODEV;
+	}
 
 	for (bits = res->ee.warnings; bits; bits &= bits - 1)
 		report_add(&res->report, "1-27", "EEPROM warning", JUDGMENT_PASS,
@@ -176,11 +188,13 @@ static int step1_trims(struct ftest_ctx *x)
 	trim[AS9888_REG_OSC - AS9888_REG_REF1] = ee->osc;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		trim[AS9888_REG_AGA(axis) - AS9888_REG_REF1] = ee->axis[axis].ga;
-		trim[AS9888_REG_ADA(axis) - AS9888_REG_REF1] = ee->axis[axis].da;
+		trim[AS9888_REG_ADA(axis) - AS9888_REG_REF1] =
+			x->o->apply_dac ? x->o->apply_dac[axis] : ee->axis[axis].da;
 	}
 	ret = transport_write(t, AS9888_REG_REF1, trim, sizeof(trim));
 	if (ret)
 		return bus_failed(x, "1-30", "trim load", ret);
+	memcpy(x->dac, &trim[AS9888_REG_AXDA - AS9888_REG_REF1], AS9888_AXES);
 	ret = transport_read(t, AS9888_REG_REF1, back, sizeof(back));
 	if (ret)
 		return bus_failed(x, "1-39", "register R/W check (D10)", ret);
@@ -200,27 +214,32 @@ static int step1_trims(struct ftest_ctx *x)
 	return 0;
 }
 
-int ftest_step1(struct transport *t, struct ftest_result *res, bool keep_going)
+int ftest_step1_opts(struct transport *t, const struct ftest_opts *o,
+		     struct ftest_result *res)
 {
-	struct ftest_opts o;
-	struct ftest_ctx x = { .res = res, .o = &o };
+	struct ftest_ctx x = { .res = res, .o = o };
 	int ret;
 
-	ftest_opts_default(&o);
-	o.keep_going = keep_going;
 	chip_init(&x.chip, t);
-
 	ret = step1_identify(&x);
-	if (ret || x.stop)
-		return ret ? ret : -EIO;
-	ret = step1_eeprom(&x);
-	if (ret || x.stop)
-		return ret ? ret : -EIO;
-	ret = step1_trims(&x);
+	if (!ret && !x.stop)
+		ret = step1_eeprom(&x);
+	if (!ret && !x.stop)
+		ret = step1_trims(&x);
 	if (ret)
 		return ret;
 
 	return x.stop ? -EIO : 0;
+}
+
+int ftest_step1(struct transport *t, struct ftest_result *res, bool keep_going)
+{
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	o.keep_going = keep_going;
+
+	return ftest_step1_opts(t, &o, res);
 }
 
 /*
@@ -520,13 +539,17 @@ static void level_judge(struct ftest_ctx *x, const struct level_run *r,
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		char name[48], limits[24];
 
+		bool ok = as9888_fluctuation_ok(r->min[axis], r->max[axis],
+						x->o->fluctuation);
+
 		snprintf(name, sizeof(name), "fluctuation of %c", axis_name[axis]);
 		snprintf(limits, sizeof(limits), "max - min <= %u",
 			 x->o->fluctuation);
-		if (!judge(x, steps[10 + axis], name,
-			   as9888_fluctuation_ok(r->min[axis], r->max[axis],
-						 x->o->fluctuation),
-			   limits, "%d", r->max[axis] - r->min[axis]) && x->stop)
+		if (!judge(x, steps[10 + axis], name, ok, limits, "%d%s",
+			   r->max[axis] - r->min[axis],
+			   !ok && x->o->user_mode ?
+			   ": the device moved; keep it still and flat, then try again" :
+			   "") && x->stop)
 			return;
 	}
 }
@@ -593,6 +616,36 @@ static void means(const struct level_run *r, int32_t mean_q16[AS9888_AXES])
 		as9888_mean_q16(r->sum[axis], r->n, &mean_q16[axis]);
 }
 
+/*
+ * A product user's recalibration also wants the device flat, not merely
+ * level in the sense of D8: the angle between the vertical axis and the
+ * reading, offsets included, must stay within FTEST_USER_TILT_DEG.
+ */
+static int user_flat(struct ftest_ctx *x, const int32_t mean_q16[AS9888_AXES],
+		     const int8_t g[AS9888_AXES])
+{
+	double h2 = 0.0, v = 0.0, tilt;
+	int axis;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		double a = mean_q16[axis] / 65536.0;
+
+		if (g[axis])
+			v = fabs(a);
+		else
+			h2 += a * a;
+	}
+	tilt = atan2(sqrt(h2), v) * 180.0 / M_PI;
+	if (!judge(x, "3-23", "device flat", tilt <= FTEST_USER_TILT_DEG,
+		   "tilt <= 10 degrees",
+		   tilt <= FTEST_USER_TILT_DEG ? "tilt about %.1f degrees" :
+		   "the device is not flat (tilted about %.1f degrees): lay it flat on a level surface and try again",
+		   tilt))
+		return -EINVAL;
+
+	return 0;
+}
+
 /* D8: posture, from the data or as given */
 static int posture(struct ftest_ctx *x, const int32_t mean_q16[AS9888_AXES],
 		   const int32_t st_q16[AS9888_AXES], int8_t g[AS9888_AXES])
@@ -619,7 +672,10 @@ static int posture(struct ftest_ctx *x, const int32_t mean_q16[AS9888_AXES],
 	      mean_q16[2] / 65536.0, g[0], g[1], g[2],
 	      x->o->gravity_given ? " (given)" : " (detected)");
 
-	return err == AS9888_POSTURE_OK ? 0 : -EINVAL;
+	if (err != AS9888_POSTURE_OK)
+		return -EINVAL;
+
+	return x->o->user_mode ? user_flat(x, mean_q16, g) : 0;
 }
 
 static int level_temperature(const struct level_run *r, int32_t *t_mdegc)
@@ -659,7 +715,7 @@ static int dac_optimum(struct ftest_ctx *x, const int32_t mean_q16[AS9888_AXES],
 					      g[axis], &ot_l[axis]);
 		if (ret)
 			return ret;
-		if (as9888_dac_opt(trim->ga, trim->da, trim->gain, ot_l[axis],
+		if (as9888_dac_opt(trim->ga, x->dac[axis], trim->gain, ot_l[axis],
 				   &dac[axis]) == -ERANGE)
 			clamped = true;
 	}
@@ -687,11 +743,22 @@ static int write_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES])
 	ret = transport_read(t, AS9888_REG_AXDA, back, AS9888_AXES);
 	if (ret)
 		return bus_failed(x, "3-26", "DAC read-back", ret);
+	memcpy(x->dac, back, AS9888_AXES);
 	judge(x, "3-26", "DAC written (3-24..3-26, D2)",
 	      !memcmp(back, dac, AS9888_AXES), "read-back equals DACopt",
 	      "0x%02x 0x%02x 0x%02x", back[0], back[1], back[2]);
 
 	return 0;
+}
+
+static void store_level(struct ftest_result *res,
+			const int32_t mean[AS9888_AXES], int32_t t_mdegc,
+			const int8_t g[AS9888_AXES])
+{
+	memcpy(res->level_mean_q16, mean, sizeof(res->level_mean_q16));
+	memcpy(res->level_g, g, sizeof(res->level_g));
+	res->level_t_mdegc = t_mdegc;
+	res->have_level = true;
 }
 
 /* Step 3: accelerometer function test and level data */
@@ -737,6 +804,9 @@ static int step3(struct ftest_ctx *x)
 	ret = posture(x, mean, st, g);
 	if (ret && x->stop)
 		return 0;
+	store_level(res, mean, t_l, g);
+	if (x->o->measure_only)
+		return 0;
 	ret = dac_optimum(x, mean, st, g, dac);
 	if (ret && x->stop)
 		return 0;
@@ -760,6 +830,7 @@ static int step3(struct ftest_ctx *x)
 	if (ret)
 		return ret;
 
+	store_level(res, mean, t_l, g);
 	memcpy(res->rec.eeprom, ee->raw, AS9888_EEPROM_LEN);
 	memcpy(res->rec.dac, dac, AS9888_AXES);
 	memcpy(res->rec.level_mean_q16, mean, sizeof(mean));

@@ -20,6 +20,9 @@
 /* Largest TMPS spread (codes) within one averaging run: 0.625 degC */
 #define FTEST_TMPS_SPREAD_MAX		1
 #define FTEST_STABLE_TIMEOUT_MS_DEFAULT	10000
+/* Field recalibration: stricter than the factory */
+#define FTEST_USER_FLUCTUATION		8
+#define FTEST_USER_TILT_DEG		10
 
 /**
  * struct ftest_opts - how to run the test
@@ -31,7 +34,12 @@
  * @gravity:		direction of gravity in the sensor frame
  * @keep_going:		go on after a failed judgment
  * @stable_timeout_ms:	how long to wait for a stable temperature
- * @level_only:		skip step 2 (field recalibration)
+ * @level_only:		skip step 2 (field recalibration and checks)
+ * @user_mode:		a product user runs it: stricter conditions (still,
+ *			flat within FTEST_USER_TILT_DEG) and plain messages
+ * @measure_only:	stop after the first level run: no DAC change
+ * @expect_eeprom:	refuse a chip whose EEPROM differs (NULL: any chip)
+ * @apply_dac:		DAC values to load after the trims (NULL: EEPROM's)
  */
 struct ftest_opts {
 	uint32_t samples;
@@ -43,6 +51,10 @@ struct ftest_opts {
 	bool keep_going;
 	uint32_t stable_timeout_ms;
 	bool level_only;
+	bool user_mode;
+	bool measure_only;
+	const uint8_t *expect_eeprom;
+	const uint8_t *apply_dac;
 };
 
 void ftest_opts_default(struct ftest_opts *o);
@@ -57,6 +69,11 @@ void ftest_opts_default(struct ftest_opts *o);
  * @rec:	the calibration record (without timestamp)
  * @offset_q16:	Ot_L per axis with the new DAC values
  * @duration_ns: how long steps 1..3 took on the backend's clock
+ * @have_level:	a level run completed (@level_* valid), also with
+ *		@measure_only
+ * @level_mean_q16: its mean per axis
+ * @level_t_mdegc: its temperature
+ * @level_g:	its gravity direction
  */
 struct ftest_result {
 	struct report report;
@@ -67,6 +84,10 @@ struct ftest_result {
 	struct calib_record rec;
 	int32_t offset_q16[AS9888_AXES];
 	uint64_t duration_ns;
+	bool have_level;
+	int32_t level_mean_q16[AS9888_AXES];
+	int32_t level_t_mdegc;
+	int8_t level_g[AS9888_AXES];
 };
 
 /*
@@ -83,5 +104,8 @@ void ftest_result_free(struct ftest_result *res);
  * them (used by restore too).
  */
 int ftest_step1(struct transport *t, struct ftest_result *res, bool keep_going);
+/* The same with all options (identity check, DAC values to load) */
+int ftest_step1_opts(struct transport *t, const struct ftest_opts *o,
+		     struct ftest_result *res);
 
 #endif

@@ -1,28 +1,15 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * as9888-calibd: the AS9888 factory on-board test, offset DAC optimisation,
- * calibration record and boot-time restore.
+ * calibration record, boot-time restore and field recalibration.
  */
-#include <errno.h>
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
-#include <time.h>
 
-#include "as9888_regs.h"
-#include "atomic_file.h"
-#include "backend_raw.h"
-#include "backend_sim.h"
 #include "cli.h"
-#include "ftest.h"
-#include "json.h"
-#include "record.h"
-#include "show.h"
+#include "commands.h"
 
 #define EXIT_USAGE	2
-#define RECORD_MODE	0644
-#define STATE_DIR_MODE	0755
 #define ERR_LEN		512
 
 static const char usage_text[] =
@@ -33,6 +20,12 @@ static const char usage_text[] =
 "                 application note) and write the calibration record\n"
 "  restore        check the record against the chip and apply it\n"
 "  show           print the calibration at a temperature\n"
+"  recalibrate    field repair after a shock: the level test again, on top\n"
+"                 of the factory record (the device lying still and flat,\n"
+"                 any side down); the old record is kept for rollback\n"
+"  check          compare a level reading with the record's prediction and\n"
+"                 say whether a recalibration is advisable\n"
+"  rollback       bring back the calibration before the last recalibrate\n"
 "  help           this text\n"
 "\n"
 "Common options:\n"
@@ -65,253 +58,13 @@ static const char usage_text[] =
 "                       (default 10000)\n"
 "  --keep-going         do not stop at the first failed judgment\n"
 "\n"
+"recalibrate and check take --samples, --fluctuation (default 8), --lpf,\n"
+"--gravity, --stable-timeout and --json as well.\n"
+"\n"
 "show options:\n"
 "  --temperature T      degrees Celsius, -30..85 (default: the level test's)\n"
 "\n"
 "Exit status: 0 success, 1 a judgment or check failed, 2 usage error.\n";
-
-static int open_backend(const struct cli_opts *o, struct transport **t)
-{
-	struct backend_sim_opts sim = {
-		.unit_path = o->unit_path,
-		.virtual_clock = o->virtual_clock,
-	};
-	char err[ERR_LEN];
-	int ret;
-
-	if (o->backend == CLI_BACKEND_RAW)
-		ret = backend_raw_open(&o->raw, t, err, sizeof(err));
-	else
-		ret = backend_sim_open(&sim, t, err, sizeof(err));
-	if (ret)
-		fprintf(stderr, "as9888-calibd: %s\n", err);
-
-	return ret;
-}
-
-static void print_axes_q16(FILE *out, const int32_t v[AS9888_AXES])
-{
-	fprintf(out, "[%.6f, %.6f, %.6f]", v[0] / 65536.0, v[1] / 65536.0,
-		v[2] / 65536.0);
-}
-
-static void print_factory_json(FILE *out, const struct ftest_result *res,
-			       const char *record_path, bool stored)
-{
-	const struct judgment *failed = report_first_failure(&res->report);
-	const struct calib_record *rec = &res->rec;
-	uint32_t w;
-	bool first = true;
-
-	fputs("{\n  \"result\": ", out);
-	json_string(out, failed ? "fail" : "pass");
-	fputs(",\n  \"failed_step\": ", out);
-	json_string(out, failed ? failed->step : NULL);
-	fputs(",\n  \"steps\": ", out);
-	report_print_json_steps(out, &res->report);
-	fputs(",\n  \"warnings\": [", out);
-	for (w = res->warnings; w; w &= w - 1, first = false) {
-		fputs(first ? "" : ", ", out);
-		json_string(out, as9888_ee_warning_str(w & -w));
-	}
-	fputs("],\n  \"calibration\": ", out);
-	if (!res->have_calibration) {
-		fputs("null", out);
-	} else {
-		fprintf(out, "{\n    \"dac\": [%u, %u, %u],\n    \"level_mean\": ",
-			rec->dac[0], rec->dac[1], rec->dac[2]);
-		print_axes_q16(out, rec->level_mean_q16);
-		fputs(",\n    \"offset\": ", out);
-		print_axes_q16(out, res->offset_q16);
-		fprintf(out, ",\n    \"t_level\": %.3f,\n    \"gravity\": [%d, %d, %d],\n"
-			"    \"samples\": %u,\n    \"lpf\": %s\n  }",
-			rec->t_level_mdegc / 1000.0, rec->gravity[0],
-			rec->gravity[1], rec->gravity[2], rec->samples,
-			rec->lpf ? "true" : "false");
-	}
-	fprintf(out, ",\n  \"duration_ms\": %.3f", res->duration_ns / 1e6);
-	fputs(",\n  \"record\": ", out);
-	json_string(out, stored ? record_path : NULL);
-	fputs("\n}\n", out);
-}
-
-static void print_factory_text(FILE *out, const struct ftest_result *res)
-{
-	const struct judgment *failed = report_first_failure(&res->report);
-	const struct calib_record *rec = &res->rec;
-
-	report_print_text(out, &res->report);
-	if (res->have_calibration) {
-		fprintf(out, "\nCalibration\n");
-		fprintf(out, "  DAC          0x%02x 0x%02x 0x%02x\n", rec->dac[0],
-			rec->dac[1], rec->dac[2]);
-		fprintf(out, "  level mean   %.3f %.3f %.3f LSB\n",
-			rec->level_mean_q16[0] / 65536.0,
-			rec->level_mean_q16[1] / 65536.0,
-			rec->level_mean_q16[2] / 65536.0);
-		fprintf(out, "  offset Ot_L  %.3f %.3f %.3f LSB\n",
-			res->offset_q16[0] / 65536.0, res->offset_q16[1] / 65536.0,
-			res->offset_q16[2] / 65536.0);
-		fprintf(out, "  t_L          %.3f degC\n", rec->t_level_mdegc / 1000.0);
-		fprintf(out, "  gravity      %d %d %d\n", rec->gravity[0],
-			rec->gravity[1], rec->gravity[2]);
-		fprintf(out, "  samples      %u%s\n", rec->samples,
-			rec->lpf ? " (low-pass filter on)" : "");
-	}
-	fprintf(out, "\nSteps 1-3 took %.1f ms\n", res->duration_ns / 1e6);
-	if (failed)
-		fprintf(out, "\nResult: FAIL at step %s (%s: %s)\n", failed->step,
-			failed->name, failed->measured);
-	else
-		fprintf(out, "\nResult: PASS\n");
-}
-
-/* Step 4-1: store the record crash-safely */
-static bool store_record(const struct cli_opts *o, struct ftest_result *res)
-{
-	char buf[RECORD_MAX_SIZE], err[ERR_LEN];
-	int len, ret;
-
-	res->rec.created = (int64_t)time(NULL);
-	len = record_format(&res->rec, buf, sizeof(buf));
-	ret = len < 0 ? len : ensure_parent_dir(o->record_path, STATE_DIR_MODE,
-						 err, sizeof(err));
-	if (len < 0)
-		snprintf(err, sizeof(err), "cannot format the record: %s",
-			 strerror(-len));
-	if (!ret)
-		ret = atomic_write_file(o->record_path, buf, (size_t)len,
-					RECORD_MODE, err, sizeof(err));
-	report_add(&res->report, "4-1", "store calibration record",
-		   ret ? JUDGMENT_FAIL : JUDGMENT_PASS, NULL, "%s",
-		   ret ? err : o->record_path);
-
-	return ret == 0;
-}
-
-static int cmd_factory_test(const struct cli_opts *o)
-{
-	struct ftest_result res = { 0 };
-	struct transport *t;
-	bool stored = false;
-	int ret;
-
-	ret = open_backend(o, &t);
-	if (ret)
-		return EXIT_FAILURE;
-
-	ftest_run(t, &o->ftest, &res);
-	transport_destroy(t);
-
-	if (res.have_calibration && !report_first_failure(&res.report))
-		stored = store_record(o, &res);
-
-	if (o->json) {
-		print_factory_json(stdout, &res, o->record_path, stored);
-	} else {
-		print_factory_text(stdout, &res);
-		if (stored)
-			printf("Record written to %s\n", o->record_path);
-	}
-	ret = report_first_failure(&res.report) || res.report.oom ?
-	      EXIT_FAILURE : EXIT_SUCCESS;
-	ftest_result_free(&res);
-
-	return ret;
-}
-
-static int load_record(const char *path, struct calib_record *rec)
-{
-	char buf[RECORD_MAX_SIZE + 1], err[ERR_LEN];
-	long len;
-
-	len = read_file_nofollow(path, buf, RECORD_MAX_SIZE, err, sizeof(err));
-	if (len < 0) {
-		fprintf(stderr, "as9888-calibd: %s\n", err);
-		return (int)len;
-	}
-	if (record_parse(buf, (size_t)len, rec, err, sizeof(err))) {
-		fprintf(stderr, "as9888-calibd: %s: not a valid record: %s\n", path,
-			err);
-		return -EINVAL;
-	}
-
-	return 0;
-}
-
-static int cmd_restore(const struct cli_opts *o)
-{
-	struct ftest_result res = { 0 };
-	struct calib_record rec;
-	struct transport *t;
-	uint8_t back[AS9888_AXES];
-	int ret;
-
-	if (load_record(o->record_path, &rec))
-		return EXIT_FAILURE;
-	ret = open_backend(o, &t);
-	if (ret)
-		return EXIT_FAILURE;
-
-	ret = ftest_step1(t, &res, false);
-	if (ret) {
-		const struct judgment *j = report_first_failure(&res.report);
-
-		fprintf(stderr, "as9888-calibd: restore: chip initialisation failed at step %s (%s: %s); nothing applied\n",
-			j ? j->step : "1", j ? j->name : "step 1",
-			j ? j->measured : strerror(-ret));
-		goto out;
-	}
-	if (memcmp(res.ee.raw, rec.eeprom, AS9888_EEPROM_LEN)) {
-		fprintf(stderr, "as9888-calibd: restore: %s belongs to chip %016llx, this chip is %016llx; nothing applied\n",
-			o->record_path,
-			(unsigned long long)record_fingerprint(rec.eeprom),
-			(unsigned long long)record_fingerprint(res.ee.raw));
-		ret = -ENODEV;
-		goto out;
-	}
-
-	ret = transport_write(t, AS9888_REG_AXDA, rec.dac, AS9888_AXES);
-	if (!ret)
-		ret = transport_read(t, AS9888_REG_AXDA, back, AS9888_AXES);
-	if (!ret && memcmp(back, rec.dac, AS9888_AXES))
-		ret = -EIO;
-	if (ret) {
-		fprintf(stderr, "as9888-calibd: restore: writing the offset DAC failed: %s\n",
-			strerror(-ret));
-		goto out;
-	}
-	if (o->verbose)
-		printf("restored DAC 0x%02x 0x%02x 0x%02x on chip %016llx\n",
-		       rec.dac[0], rec.dac[1], rec.dac[2],
-		       (unsigned long long)record_fingerprint(rec.eeprom));
-out:
-	transport_destroy(t);
-	ftest_result_free(&res);
-
-	return ret ? EXIT_FAILURE : EXIT_SUCCESS;
-}
-
-static int cmd_show(const struct cli_opts *o)
-{
-	struct calib_record rec;
-	struct show_result s;
-	char err[ERR_LEN];
-
-	if (load_record(o->record_path, &rec))
-		return EXIT_FAILURE;
-	if (show_compute(&rec, o->temperature_given, o->temperature_mdegc, &s,
-			 err, sizeof(err))) {
-		fprintf(stderr, "as9888-calibd: show: %s\n", err);
-		return EXIT_FAILURE;
-	}
-	if (o->json)
-		show_print_json(stdout, &rec, &s);
-	else
-		show_print_text(stdout, &rec, &s);
-
-	return EXIT_SUCCESS;
-}
 
 int main(int argc, char **argv)
 {
@@ -335,6 +88,12 @@ int main(int argc, char **argv)
 		return cmd_restore(&o);
 	case CLI_SHOW:
 		return cmd_show(&o);
+	case CLI_RECALIBRATE:
+		return cmd_recalibrate(&o);
+	case CLI_ROLLBACK:
+		return cmd_rollback(&o);
+	case CLI_CHECK:
+		return cmd_check(&o);
 	}
 
 	return EXIT_USAGE;

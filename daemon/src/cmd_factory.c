@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The commands of the factory line and of boot: factory-test, restore and
+ * show.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "as9888_regs.h"
+#include "commands.h"
+#include "ftest_print.h"
+#include "session.h"
+#include "show.h"
+
+/* Step 4-1: store the record crash-safely */
+static bool store_record(const struct cli_opts *o, struct ftest_result *res,
+			 bool keep_previous)
+{
+	char err[SESSION_ERR_LEN];
+	int ret;
+
+	ret = session_save_record(o->record_path, &res->rec, keep_previous, err,
+				  sizeof(err));
+	report_add(&res->report, "4-1", "store calibration record",
+		   ret ? JUDGMENT_FAIL : JUDGMENT_PASS, NULL, "%s",
+		   ret ? err : o->record_path);
+
+	return ret == 0;
+}
+
+int cmd_factory_test(const struct cli_opts *o)
+{
+	struct ftest_result res = { 0 };
+	struct transport *t;
+	bool stored = false;
+	int ret;
+
+	if (session_lock(o->record_path) < 0)
+		return EXIT_FAILURE;
+	ret = session_open_backend(o, &t);
+	if (ret)
+		return EXIT_FAILURE;
+
+	ftest_run(t, &o->ftest, &res);
+	transport_destroy(t);
+
+	if (res.have_calibration && !report_first_failure(&res.report))
+		stored = store_record(o, &res, false);
+
+	if (o->json) {
+		ftest_print_json(stdout, &res, o->record_path, stored);
+	} else {
+		ftest_print_text(stdout, &res);
+		if (stored)
+			printf("Record written to %s\n", o->record_path);
+	}
+	ret = report_first_failure(&res.report) || res.report.oom ?
+	      EXIT_FAILURE : EXIT_SUCCESS;
+	ftest_result_free(&res);
+
+	return ret;
+}
+
+int cmd_restore(const struct cli_opts *o)
+{
+	struct ftest_result res = { 0 };
+	struct calib_record rec;
+	struct transport *t;
+	uint8_t back[AS9888_AXES];
+	int ret;
+
+	if (session_load_record(o->record_path, &rec))
+		return EXIT_FAILURE;
+	ret = session_open_backend(o, &t);
+	if (ret)
+		return EXIT_FAILURE;
+
+	ret = ftest_step1(t, &res, false);
+	if (ret) {
+		const struct judgment *j = report_first_failure(&res.report);
+
+		fprintf(stderr, "as9888-calibd: restore: chip initialisation failed at step %s (%s: %s); nothing applied\n",
+			j ? j->step : "1", j ? j->name : "step 1",
+			j ? j->measured : strerror(-ret));
+		goto out;
+	}
+	if (memcmp(res.ee.raw, rec.eeprom, AS9888_EEPROM_LEN)) {
+		fprintf(stderr, "as9888-calibd: restore: %s belongs to chip %016llx, this chip is %016llx; nothing applied\n",
+			o->record_path,
+			(unsigned long long)record_fingerprint(rec.eeprom),
+			(unsigned long long)record_fingerprint(res.ee.raw));
+		ret = -ENODEV;
+		goto out;
+	}
+
+	ret = transport_write(t, AS9888_REG_AXDA, rec.dac, AS9888_AXES);
+	if (!ret)
+		ret = transport_read(t, AS9888_REG_AXDA, back, AS9888_AXES);
+	if (!ret && memcmp(back, rec.dac, AS9888_AXES))
+		ret = -EIO;
+	if (ret) {
+		fprintf(stderr, "as9888-calibd: restore: writing the offset DAC failed: %s\n",
+			strerror(-ret));
+		goto out;
+	}
+	if (o->verbose)
+		printf("restored DAC 0x%02x 0x%02x 0x%02x on chip %016llx\n",
+		       rec.dac[0], rec.dac[1], rec.dac[2],
+		       (unsigned long long)record_fingerprint(rec.eeprom));
+out:
+	transport_destroy(t);
+	ftest_result_free(&res);
+
+	return ret ? EXIT_FAILURE : EXIT_SUCCESS;
+}
+
+int cmd_show(const struct cli_opts *o)
+{
+	struct calib_record rec;
+	struct show_result s;
+	char err[SESSION_ERR_LEN];
+
+	if (session_load_record(o->record_path, &rec))
+		return EXIT_FAILURE;
+	if (show_compute(&rec, o->temperature_given, o->temperature_mdegc, &s,
+			 err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: show: %s\n", err);
+		return EXIT_FAILURE;
+	}
+	if (o->json)
+		show_print_json(stdout, &rec, &s);
+	else
+		show_print_text(stdout, &rec, &s);
+
+	return EXIT_SUCCESS;
+}
+

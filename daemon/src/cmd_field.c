@@ -1,0 +1,232 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Field repair (application note, section 3: a strong shock can shift the
+ * accelerometer offset): recalibrate on top of the factory record, roll a
+ * recalibration back, and check whether one is advisable.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atomic_file.h"
+#include "commands.h"
+#include "ftest_print.h"
+#include "json.h"
+#include "session.h"
+
+static void field_opts(const struct cli_opts *o, const struct calib_record *rec,
+		       struct ftest_opts *f)
+{
+	*f = o->ftest;
+	f->level_only = true;
+	f->user_mode = true;
+	f->expect_eeprom = rec->eeprom;
+	f->apply_dac = rec->dac;
+	if (!o->fluctuation_given)
+		f->fluctuation = FTEST_USER_FLUCTUATION;
+}
+
+int cmd_recalibrate(const struct cli_opts *o)
+{
+	struct ftest_result res = { 0 };
+	struct calib_record old;
+	struct transport *t;
+	struct ftest_opts f;
+	char err[SESSION_ERR_LEN];
+	bool stored = false;
+	int ret;
+
+	if (session_lock(o->record_path) < 0)
+		return EXIT_FAILURE;
+	if (session_load_record(o->record_path, &old)) {
+		fprintf(stderr, "as9888-calibd: recalibrate needs the factory record; run factory-test first\n");
+		return EXIT_FAILURE;
+	}
+	if (session_open_backend(o, &t))
+		return EXIT_FAILURE;
+	field_opts(o, &old, &f);
+	ftest_run(t, &f, &res);
+	transport_destroy(t);
+
+	if (res.have_calibration && !report_first_failure(&res.report)) {
+		ret = session_save_record(o->record_path, &res.rec, true, err,
+					  sizeof(err));
+		report_add(&res.report, "4-1", "store calibration record",
+			   ret ? JUDGMENT_FAIL : JUDGMENT_PASS, NULL, "%s",
+			   ret ? err : o->record_path);
+		stored = !ret;
+	}
+	if (o->json) {
+		ftest_print_json(stdout, &res, o->record_path, stored);
+	} else {
+		ftest_print_text(stdout, &res);
+		if (stored)
+			printf("Recalibrated; the previous calibration is kept as %s%s (as9888-calibd rollback)\n",
+			       o->record_path, SESSION_PREVIOUS_SUFFIX);
+	}
+	ret = report_first_failure(&res.report) ? EXIT_FAILURE : EXIT_SUCCESS;
+	ftest_result_free(&res);
+
+	return ret;
+}
+
+/* Write the DAC of @rec into the chip after checking the chip is its own */
+static int apply_record(const struct cli_opts *o, const struct calib_record *rec)
+{
+	struct ftest_result res = { 0 };
+	struct transport *t;
+	struct ftest_opts f;
+	const struct judgment *j;
+	int ret;
+
+	if (session_open_backend(o, &t))
+		return -ENODEV;
+	ftest_opts_default(&f);
+	f.expect_eeprom = rec->eeprom;
+	f.apply_dac = rec->dac;
+	ret = ftest_step1_opts(t, &f, &res);
+	transport_destroy(t);
+	j = report_first_failure(&res.report);
+	if (ret || j)
+		fprintf(stderr, "as9888-calibd: cannot apply the record: step %s (%s: %s)\n",
+			j ? j->step : "1", j ? j->name : "initialisation",
+			j ? j->measured : strerror(-ret));
+	ftest_result_free(&res);
+
+	return ret ? ret : j ? -EIO : 0;
+}
+
+/*
+ * current := previous, previous := current, never losing either: the
+ * current record is first parked in <path>.previous.swap, which only a
+ * completed rollback renames to <path>.previous.
+ */
+int cmd_rollback(const struct cli_opts *o)
+{
+	char prev[PATH_MAX], swap[PATH_MAX], err[SESSION_ERR_LEN];
+	char cur_text[RECORD_MAX_SIZE], prev_text[RECORD_MAX_SIZE];
+	struct calib_record cur, before;
+	long cur_len, prev_len;
+	int ret;
+
+	snprintf(prev, sizeof(prev), "%s%s", o->record_path, SESSION_PREVIOUS_SUFFIX);
+	snprintf(swap, sizeof(swap), "%s%s.swap", o->record_path,
+		 SESSION_PREVIOUS_SUFFIX);
+	if (session_lock(o->record_path) < 0 ||
+	    session_load_record(o->record_path, &cur) ||
+	    session_load_record(prev, &before))
+		return EXIT_FAILURE;
+	if (memcmp(cur.eeprom, before.eeprom, AS9888_EEPROM_LEN)) {
+		fprintf(stderr, "as9888-calibd: rollback: %s belongs to another chip; nothing changed\n",
+			prev);
+		return EXIT_FAILURE;
+	}
+	cur_len = read_file_nofollow(o->record_path, cur_text, sizeof(cur_text),
+				     err, sizeof(err));
+	prev_len = read_file_nofollow(prev, prev_text, sizeof(prev_text), err,
+				      sizeof(err));
+	ret = cur_len < 0 || prev_len < 0 ? -EIO : 0;
+	if (!ret)
+		ret = atomic_write_file(swap, cur_text, (size_t)cur_len, RECORD_MODE,
+					err, sizeof(err));
+	if (!ret)
+		ret = atomic_write_file(o->record_path, prev_text, (size_t)prev_len,
+					RECORD_MODE, err, sizeof(err));
+	if (!ret)
+		ret = durable_rename(swap, prev, err, sizeof(err));
+	if (ret) {
+		fprintf(stderr, "as9888-calibd: rollback: %s\n", err);
+		return EXIT_FAILURE;
+	}
+
+	if (apply_record(o, &before))
+		return EXIT_FAILURE;
+	printf("Rolled back: %s holds the calibration from before the last recalibration\n",
+	       o->record_path);
+	return EXIT_SUCCESS;
+}
+
+/* Below this, a difference from the prediction is noise (Note 4b: 10 LSB ~ 2.2 degrees) */
+#define CHECK_THRESHOLD_LSB	10.0
+
+int cmd_check(const struct cli_opts *o)
+{
+	struct ftest_result res = { 0 };
+	struct as9888_eeprom ee;
+	struct calib_record rec;
+	struct transport *t;
+	struct ftest_opts f;
+	const struct judgment *j;
+	int32_t ot_l[AS9888_AXES];
+	double diff[AS9888_AXES], deg[AS9888_AXES], worst = 0.0;
+	int axis, ret;
+
+	if (session_load_record(o->record_path, &rec))
+		return EXIT_FAILURE;
+	if (session_open_backend(o, &t))
+		return EXIT_FAILURE;
+	field_opts(o, &rec, &f);
+	f.measure_only = true;
+	ftest_run(t, &f, &res);
+	transport_destroy(t);
+
+	j = report_first_failure(&res.report);
+	if (j || !res.have_level) {
+		fprintf(stderr, "as9888-calibd: check: cannot measure: step %s (%s: %s)\n",
+			j ? j->step : "3", j ? j->name : "level run",
+			j ? j->measured : "no level data");
+		ftest_result_free(&res);
+		return EXIT_FAILURE;
+	}
+
+	as9888_eeprom_decode(rec.eeprom, &ee);
+	ret = record_level_offsets(&rec, &ee, ot_l);
+	for (axis = 0; !ret && axis < AS9888_AXES; axis++) {
+		const struct as9888_axis_trim *trim = &ee.axis[axis];
+		int32_t st, ot;
+		double predicted;
+
+		ret = as9888_sensitivity_q16(trim, ee.t_rt_mdegc, res.level_t_mdegc, &st);
+		if (!ret)
+			ret = as9888_offset_q16(trim, ot_l[axis], rec.t_level_mdegc,
+						res.level_t_mdegc, &ot);
+		if (ret)
+			break;
+		/* Ot = A + St G, so a level reading should be Ot - St G */
+		predicted = (ot - (double)st * res.level_g[axis]) / 65536.0;
+		diff[axis] = res.level_mean_q16[axis] / 65536.0 - predicted;
+		deg[axis] = asin(fmin(1.0, fabs(diff[axis]) / (st / 65536.0))) *
+			    180.0 / M_PI;
+		if (fabs(diff[axis]) > worst)
+			worst = fabs(diff[axis]);
+	}
+	ftest_result_free(&res);
+	if (ret) {
+		fprintf(stderr, "as9888-calibd: check: %s\n", strerror(-ret));
+		return EXIT_FAILURE;
+	}
+
+	if (o->json) {
+		printf("{\n  \"temperature\": %.3f,\n  \"advisable\": %s,\n  \"threshold\": %.1f,\n  \"axes\": {",
+		       res.level_t_mdegc / 1000.0, worst > CHECK_THRESHOLD_LSB ? "true" : "false",
+		       CHECK_THRESHOLD_LSB);
+		for (axis = 0; axis < AS9888_AXES; axis++)
+			printf("%s\n    \"%c\": {\"difference\": %.3f, \"degrees\": %.2f}",
+			       axis ? "," : "", "xyz"[axis], diff[axis], deg[axis]);
+		printf("\n  }\n}\n");
+	} else {
+		printf("At %.3f degC the level reading differs from the calibration by\n",
+		       res.level_t_mdegc / 1000.0);
+		for (axis = 0; axis < AS9888_AXES; axis++)
+			printf("  %c  %+8.2f LSB  (%.2f degrees)\n", "XYZ"[axis],
+			       diff[axis], deg[axis]);
+		printf(worst > CHECK_THRESHOLD_LSB ?
+		       "A recalibration is advisable (more than %.0f LSB): lay the device flat and run as9888-calibd recalibrate.\n" :
+		       "No recalibration needed (within %.0f LSB).\n", CHECK_THRESHOLD_LSB);
+	}
+
+	return EXIT_SUCCESS;
+}

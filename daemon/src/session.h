@@ -1,0 +1,28 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/* What every command needs: its backend, and the record read and written. */
+#ifndef AS9888_SESSION_H
+#define AS9888_SESSION_H
+
+#include <limits.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "cli.h"
+#include "record.h"
+#include "transport.h"
+
+#define RECORD_MODE		0644
+#define STATE_DIR_MODE		0755
+#define SESSION_ERR_LEN		512
+#define SESSION_PREVIOUS_SUFFIX	".previous"
+
+/* Both print the reason to stderr and return -errno on failure */
+int session_open_backend(const struct cli_opts *o, struct transport **t);
+int session_load_record(const char *path, struct calib_record *rec);
+int session_save_record(const char *path, struct calib_record *rec,
+			bool keep_previous, char *err, size_t errlen);
+
+/* Returns the lock's fd (held until exit), or -errno */
+int session_lock(const char *path);
+
+#endif
