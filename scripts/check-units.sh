@@ -14,9 +14,15 @@ trap 'rm -rf "$root"' EXIT
 
 install -D -m 0755 "$calibd" "$root/usr/sbin/as9888-calibd"
 install -D -m 0644 "$top/daemon/as9888-calibd.8" "$root/usr/share/man/man8/as9888-calibd.8"
-status=0
-for unit in "$top"/daemon/systemd/*.service; do
+for unit in "$top"/daemon/systemd/*.service "$top"/daemon/systemd/*.socket; do
 	install -D -m 0644 "$unit" "$root/usr/lib/systemd/system/$(basename "$unit")"
+done
+# the targets and slices the default dependencies name
+for unit in /usr/lib/systemd/system/*.target /usr/lib/systemd/system/*.slice; do
+	cp -P "$unit" "$root/usr/lib/systemd/system/"
+done
+status=0
+for unit in "$top"/daemon/systemd/*.service "$top"/daemon/systemd/*.socket; do
 	if ! out=$(MANPATH="$root/usr/share/man" systemd-analyze verify --root="$root" \
 			"$root/usr/lib/systemd/system/$(basename "$unit")" 2>&1) ||
 	   [ -n "$out" ]; then

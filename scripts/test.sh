@@ -75,6 +75,8 @@ stage "release build" release_build
 stage "gpio.c against libgpiod 2.x" "$top/scripts/libgpiod2-check.sh"
 stage "systemd units" "$top/scripts/check-units.sh" "$build/release/daemon/as9888-calibd"
 stage "factory-test benchmark" benchmark
+stage "daemon idle cost and restore latency (release build)" \
+	"$top/tests/daemon/daemon.sh" "$build/release/daemon/as9888-calibd"
 
 if [ "$what" = all ]; then
 	:

@@ -31,6 +31,9 @@ enum {
 	OPT_RSTN_LINE,
 	OPT_INT1_LINE,
 	OPT_INT2_LINE,
+	OPT_SOCKET,
+	OPT_SOCKET_MODE,
+	OPT_SOCKET_GROUP,
 };
 
 static const struct option long_opts[] = {
@@ -55,6 +58,9 @@ static const struct option long_opts[] = {
 	{ "rstn-line", required_argument, NULL, OPT_RSTN_LINE },
 	{ "int1-line", required_argument, NULL, OPT_INT1_LINE },
 	{ "int2-line", required_argument, NULL, OPT_INT2_LINE },
+	{ "socket", required_argument, NULL, OPT_SOCKET },
+	{ "socket-mode", required_argument, NULL, OPT_SOCKET_MODE },
+	{ "socket-group", required_argument, NULL, OPT_SOCKET_GROUP },
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -118,6 +124,21 @@ static int parse_gravity(const char *s, int8_t g[3])
 	return 0;
 }
 
+/* A socket mode: octal, no set-id or sticky bits */
+static int parse_mode(const char *s, unsigned int *mode)
+{
+	unsigned long v;
+	char *end;
+
+	errno = 0;
+	v = strtoul(s, &end, 8);
+	if (errno || end == s || *end || v > 0777)
+		return -EINVAL;
+	*mode = (unsigned int)v;
+
+	return 0;
+}
+
 /* An I2C address the chip can have: 0x0c..0x0f (CAD1/CAD0) */
 static int parse_address(const char *s, unsigned int *address)
 {
@@ -141,6 +162,8 @@ static const char *const commands[] = {
 	[CLI_RECALIBRATE] = "recalibrate",
 	[CLI_ROLLBACK] = "rollback",
 	[CLI_CHECK] = "check",
+	[CLI_DAEMON] = "daemon",
+	[CLI_REQUEST] = "request",
 };
 
 /* Which options each command takes */
@@ -148,14 +171,20 @@ static bool option_allowed(enum cli_command cmd, int opt)
 {
 	bool chip = cmd == CLI_FACTORY_TEST || cmd == CLI_RESTORE ||
 		    cmd == CLI_RECALIBRATE || cmd == CLI_ROLLBACK ||
-		    cmd == CLI_CHECK;
+		    cmd == CLI_CHECK || cmd == CLI_DAEMON;
 	bool level = cmd == CLI_FACTORY_TEST || cmd == CLI_RECALIBRATE ||
 		     cmd == CLI_CHECK;
 
 	switch (opt) {
 	case OPT_RECORD:
+		return cmd != CLI_REQUEST;
 	case OPT_HELP:
 		return true;
+	case OPT_SOCKET:
+		return cmd == CLI_DAEMON || cmd == CLI_REQUEST;
+	case OPT_SOCKET_MODE:
+	case OPT_SOCKET_GROUP:
+		return cmd == CLI_DAEMON;
 	case OPT_BACKEND:
 	case OPT_UNIT:
 	case OPT_SIM_CLOCK:
@@ -167,7 +196,7 @@ static bool option_allowed(enum cli_command cmd, int opt)
 	case OPT_INT2_LINE:
 		return chip;
 	case OPT_JSON:
-		return level || cmd == CLI_SHOW;
+		return level || cmd == CLI_SHOW || cmd == CLI_REQUEST;
 	case OPT_TEMPERATURE:
 		return cmd == CLI_SHOW;
 	case OPT_VERBOSE:
@@ -197,6 +226,8 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	o->raw.rstn = RAW_LINE_NONE;
 	o->raw.int1 = RAW_LINE_NONE;
 	o->raw.int2 = RAW_LINE_NONE;
+	o->socket_path = CLI_DEFAULT_SOCKET;
+	o->socket_mode = CLI_DEFAULT_SOCKET_MODE;
 	ftest_opts_default(&o->ftest);
 
 	if (argc < 2)
@@ -233,9 +264,24 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 				o->backend = CLI_BACKEND_SIM;
 			else if (!strcmp(optarg, "raw"))
 				o->backend = CLI_BACKEND_RAW;
+			else if (!strcmp(optarg, "iio"))
+				o->backend = CLI_BACKEND_IIO;
 			else
-				return bad(err, errlen, "unknown backend \"%s\" (sim or raw)",
+				return bad(err, errlen, "unknown backend \"%s\" (sim, raw or iio)",
 					   optarg);
+			break;
+		case OPT_SOCKET:
+			if (!*optarg)
+				return bad(err, errlen, "--socket needs a path");
+			o->socket_path = optarg;
+			break;
+		case OPT_SOCKET_MODE:
+			if (parse_mode(optarg, &o->socket_mode))
+				return bad(err, errlen, "--socket-mode takes an octal mode such as 0660, not \"%s\"",
+					   optarg);
+			break;
+		case OPT_SOCKET_GROUP:
+			o->socket_group = optarg;
 			break;
 		case OPT_I2C_DEV:
 			o->raw.i2c_dev = optarg;
@@ -326,8 +372,15 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 			break;
 		}
 	}
+	if (o->command == CLI_REQUEST && optind < argc)
+		o->request = argv[optind++];
+	if (o->command == CLI_REQUEST && !o->request)
+		return bad(err, errlen, "request needs what to ask: status, check, recalibrate or rollback");
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
+	if (o->backend == CLI_BACKEND_IIO && o->command != CLI_RESTORE &&
+	    o->command != CLI_DAEMON)
+		return bad(err, errlen, "--backend iio is for restore and daemon (the test engine needs register access: use sim or raw)");
 	if (o->backend == CLI_BACKEND_RAW && (o->unit_path || o->virtual_clock))
 		return bad(err, errlen, "--unit and --sim-clock are for --backend sim");
 	if (o->backend == CLI_BACKEND_SIM &&

@@ -12,11 +12,14 @@
 
 #define CLI_DEFAULT_RECORD	"/var/lib/as9888/calibration"
 #define CLI_DEFAULT_I2C_DEV	"/dev/i2c-0"
+#define CLI_DEFAULT_SOCKET	"/run/as9888-calibd.sock"
+#define CLI_DEFAULT_SOCKET_MODE	0660
 #define CLI_DEFAULT_I2C_ADDRESS	0x0c
 
 enum cli_backend {
 	CLI_BACKEND_SIM = 0,
 	CLI_BACKEND_RAW,
+	CLI_BACKEND_IIO,
 };
 
 enum cli_command {
@@ -27,6 +30,8 @@ enum cli_command {
 	CLI_RECALIBRATE,
 	CLI_ROLLBACK,
 	CLI_CHECK,
+	CLI_DAEMON,
+	CLI_REQUEST,
 };
 
 /**
@@ -42,6 +47,10 @@ enum cli_command {
  * @fluctuation_given:	--fluctuation was given
  * @temperature_given:	--temperature was given
  * @temperature_mdegc:	its value
+ * @socket_path:	the daemon's Unix socket
+ * @socket_mode:	its permissions: who may send requests
+ * @socket_group:	its group (NULL: the daemon's)
+ * @request:		what "request" asks the daemon
  * @ftest:		factory-test options
  */
 struct cli_opts {
@@ -56,6 +65,10 @@ struct cli_opts {
 	bool fluctuation_given;
 	bool temperature_given;
 	int32_t temperature_mdegc;
+	const char *socket_path;
+	unsigned int socket_mode;
+	const char *socket_group;
+	const char *request;
 	struct ftest_opts ftest;
 };
 

@@ -11,6 +11,7 @@
 #include "as9888_regs.h"
 #include "commands.h"
 #include "ftest_print.h"
+#include "iio.h"
 #include "session.h"
 #include "show.h"
 
@@ -63,6 +64,24 @@ int cmd_factory_test(const struct cli_opts *o)
 	return ret;
 }
 
+/* Through the driver: the record's DAC and level data into its attributes */
+static int restore_iio(const struct cli_opts *o)
+{
+	char dir[IIO_PATH_MAX];
+
+	if (iio_find_device(NULL, dir, sizeof(dir))) {
+		fprintf(stderr, "as9888-calibd: restore: no %s IIO device; nothing applied\n",
+			IIO_DEVICE_NAME);
+		return EXIT_FAILURE;
+	}
+	if (iio_restore(o->record_path, dir))
+		return EXIT_FAILURE;
+	if (o->verbose)
+		printf("restored %s to %s\n", o->record_path, dir);
+
+	return EXIT_SUCCESS;
+}
+
 int cmd_restore(const struct cli_opts *o)
 {
 	struct ftest_result res = { 0 };
@@ -71,6 +90,8 @@ int cmd_restore(const struct cli_opts *o)
 	uint8_t back[AS9888_AXES];
 	int ret;
 
+	if (o->backend == CLI_BACKEND_IIO)
+		return restore_iio(o);
 	if (session_load_record(o->record_path, &rec))
 		return EXIT_FAILURE;
 	ret = session_open_backend(o, &t);

@@ -14,6 +14,7 @@
 #include "atomic_file.h"
 #include "commands.h"
 #include "ftest_print.h"
+#include "iio.h"
 #include "json.h"
 #include "session.h"
 
@@ -142,8 +143,17 @@ int cmd_rollback(const struct cli_opts *o)
 		return EXIT_FAILURE;
 	}
 
-	if (apply_record(o, &before))
+	if (o->backend == CLI_BACKEND_IIO) {
+		char dir[IIO_PATH_MAX];
+
+		if (iio_find_device(NULL, dir, sizeof(dir)) ||
+		    iio_restore(o->record_path, dir)) {
+			fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device\n");
+			return EXIT_FAILURE;
+		}
+	} else if (apply_record(o, &before)) {
 		return EXIT_FAILURE;
+	}
 	printf("Rolled back: %s holds the calibration from before the last recalibration\n",
 	       o->record_path);
 	return EXIT_SUCCESS;

@@ -11,5 +11,7 @@ int cmd_show(const struct cli_opts *o);
 int cmd_recalibrate(const struct cli_opts *o);
 int cmd_rollback(const struct cli_opts *o);
 int cmd_check(const struct cli_opts *o);
+int cmd_daemon(const struct cli_opts *o);
+int cmd_request(const struct cli_opts *o);
 
 #endif

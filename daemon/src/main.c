@@ -26,13 +26,17 @@ static const char usage_text[] =
 "  check          compare a level reading with the record's prediction and\n"
 "                 say whether a recalibration is advisable\n"
 "  rollback       bring back the calibration before the last recalibrate\n"
+"  daemon         stay running: apply the record whenever the AS9888 IIO\n"
+"                 device appears, and serve requests on a Unix socket\n"
+"  request WHAT   ask the daemon: status, check, recalibrate, rollback\n"
 "  help           this text\n"
 "\n"
 "Common options:\n"
 "  --record PATH        calibration record (default " CLI_DEFAULT_RECORD ")\n"
-"  --backend sim|raw    chip access: the simulator (default), or the chip on\n"
-"                       an I2C bus through i2c-dev with the kernel driver\n"
-"                       unbound, its pins through libgpiod\n"
+"  --backend sim|raw|iio  chip access: the simulator (default); raw: the\n"
+"                       chip on an I2C bus through i2c-dev with the kernel\n"
+"                       driver unbound, its pins through libgpiod; iio: the\n"
+"                       bound driver (restore and daemon only)\n"
 "  --unit FILE          simulated unit description (default: built-in unit)\n"
 "  --sim-clock real|virtual  simulator time base (default real)\n"
 "  --json               JSON output (factory-test, show)\n"
@@ -60,6 +64,11 @@ static const char usage_text[] =
 "\n"
 "recalibrate and check take --samples, --fluctuation (default 8), --lpf,\n"
 "--gravity, --stable-timeout and --json as well.\n"
+"\n"
+"daemon and request options:\n"
+"  --socket PATH        Unix socket (default " CLI_DEFAULT_SOCKET ")\n"
+"  --socket-mode MODE   its permissions, who may send requests (default 0660)\n"
+"  --socket-group NAME  its group\n"
 "\n"
 "show options:\n"
 "  --temperature T      degrees Celsius, -30..85 (default: the level test's)\n"
@@ -94,6 +103,10 @@ int main(int argc, char **argv)
 		return cmd_rollback(&o);
 	case CLI_CHECK:
 		return cmd_check(&o);
+	case CLI_DAEMON:
+		return cmd_daemon(&o);
+	case CLI_REQUEST:
+		return cmd_request(&o);
 	}
 
 	return EXIT_USAGE;

@@ -25,7 +25,11 @@ int session_open_backend(const struct cli_opts *o, struct transport **t)
 	char err[SESSION_ERR_LEN];
 	int ret;
 
-	if (o->backend == CLI_BACKEND_RAW)
+	if (o->backend == CLI_BACKEND_IIO) {
+		snprintf(err, sizeof(err),
+			 "the test engine needs register access: --backend sim or raw (the driver-backed engine is not written yet)");
+		ret = -EOPNOTSUPP;
+	} else if (o->backend == CLI_BACKEND_RAW)
 		ret = backend_raw_open(&o->raw, t, err, sizeof(err));
 	else
 		ret = backend_sim_open(&sim, t, err, sizeof(err));

@@ -1,0 +1,201 @@
+// SPDX-License-Identifier: GPL-2.0
+/* The AS9888 IIO driver's interfaces as the daemon uses them (iio.h). */
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "iio.h"
+#include "session.h"
+
+#define IIO_PREFIX	"iio:device"
+#define ATTR_MAX	128
+
+static const char *sysfs_root(void)
+{
+	const char *root = getenv("AS9888_SYSFS");
+
+	return root && *root ? root : "/sys";
+}
+
+/* Read a small sysfs attribute, without its trailing newline */
+static int read_attr(const char *dir, const char *name, char *buf, size_t size)
+{
+	char path[IIO_PATH_MAX];
+	ssize_t n;
+	int fd;
+
+	snprintf(path, sizeof(path), "%s/%s", dir, name);
+	fd = open(path, O_RDONLY | O_CLOEXEC);
+	if (fd < 0)
+		return -errno;
+	n = read(fd, buf, size - 1);
+	close(fd);
+	if (n < 0)
+		return -errno;
+	while (n > 0 && buf[n - 1] == '\n')
+		n--;
+	buf[n] = '\0';
+
+	return (int)n;
+}
+
+static int write_attr(const char *dir, const char *name, const char *value)
+{
+	char path[IIO_PATH_MAX];
+	size_t len = strlen(value);
+	ssize_t n;
+	int fd;
+
+	snprintf(path, sizeof(path), "%s/%s", dir, name);
+	fd = open(path, O_WRONLY | O_CLOEXEC);
+	if (fd < 0)
+		return -errno;
+	n = write(fd, value, len);
+	if (n < 0)
+		n = -errno;
+	close(fd);
+
+	return n < 0 ? (int)n : (size_t)n == len ? 0 : -EIO;
+}
+
+static bool is_as9888(const char *dir)
+{
+	char name[ATTR_MAX];
+
+	return read_attr(dir, "name", name, sizeof(name)) > 0 &&
+	       !strcmp(name, IIO_DEVICE_NAME);
+}
+
+/* The first AS9888 iio:deviceN directly below @dir */
+static int scan(const char *dir, char *out, size_t size)
+{
+	struct dirent *de;
+	DIR *d = opendir(dir);
+	int ret = -ENOENT;
+
+	if (!d)
+		return -ENOENT;
+	while ((de = readdir(d))) {
+		if (strncmp(de->d_name, IIO_PREFIX, strlen(IIO_PREFIX)))
+			continue;
+		snprintf(out, size, "%s/%s", dir, de->d_name);
+		if (is_as9888(out)) {
+			ret = 0;
+			break;
+		}
+	}
+	closedir(d);
+
+	return ret;
+}
+
+int iio_find_device(const char *devpath, char *out, size_t size)
+{
+	char dir[IIO_PATH_MAX];
+	const char *base;
+
+	if (!devpath) {
+		snprintf(dir, sizeof(dir), "%s/bus/iio/devices", sysfs_root());
+		return scan(dir, out, size);
+	}
+	if (strstr(devpath, "/.."))
+		return -ENOENT;
+	snprintf(dir, sizeof(dir), "%s%s", sysfs_root(), devpath);
+	base = strrchr(dir, '/');
+	if (base && !strncmp(base + 1, IIO_PREFIX, strlen(IIO_PREFIX))) {
+		if (!is_as9888(dir))
+			return -ENOENT;
+		snprintf(out, size, "%s", dir);
+		return 0;
+	}
+
+	return scan(dir, out, size);
+}
+
+/*
+ * The EEPROM through the driver's NVMEM provider "as9888-eeprom<N>", a
+ * sibling of iio:device<N> below the bus device.
+ */
+static int read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
+{
+	const char *base = strrchr(dir, '/');
+	char path[IIO_PATH_MAX];
+	ssize_t n;
+	int fd;
+
+	if (!base || strncmp(base + 1, IIO_PREFIX, strlen(IIO_PREFIX)))
+		return -EINVAL;
+	snprintf(path, sizeof(path), "%s/../%s-eeprom%s/nvmem", dir,
+		 IIO_DEVICE_NAME, base + 1 + strlen(IIO_PREFIX));
+	fd = open(path, O_RDONLY | O_CLOEXEC);
+	if (fd < 0)
+		return -errno;
+	n = read(fd, eeprom, AS9888_EEPROM_LEN);
+	close(fd);
+	if (n < 0)
+		return -errno;
+
+	return n == AS9888_EEPROM_LEN ? 0 : -EIO;
+}
+
+int iio_restore(const char *record_path, const char *dir)
+{
+	static const char *const bias[AS9888_AXES] = {
+		"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
+	};
+	uint8_t eeprom[AS9888_EEPROM_LEN];
+	char want[ATTR_MAX], got[ATTR_MAX];
+	struct as9888_eeprom ee;
+	struct calib_record rec;
+	int axis, ret;
+
+	if (session_load_record(record_path, &rec))
+		return -EINVAL;
+	ret = read_eeprom(dir, eeprom);
+	if (ret) {
+		fprintf(stderr, "as9888-calibd: %s: cannot read the EEPROM: %s\n",
+			dir, strerror(-ret));
+		return ret;
+	}
+	if (memcmp(eeprom, rec.eeprom, AS9888_EEPROM_LEN)) {
+		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, %s is chip %016llx; nothing applied\n",
+			record_path, (unsigned long long)record_fingerprint(rec.eeprom),
+			dir, (unsigned long long)record_fingerprint(eeprom));
+		return -ENODEV;
+	}
+	as9888_eeprom_decode(rec.eeprom, &ee);
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		snprintf(want, sizeof(want), "%d",
+			 as9888_dac2lin(ee.axis[axis].ga, rec.dac[axis]));
+		ret = write_attr(dir, bias[axis], want);
+		if (!ret)
+			ret = read_attr(dir, bias[axis], got, sizeof(got)) < 0 ? -EIO :
+			      strcmp(want, got) ? -EIO : 0;
+		if (ret) {
+			fprintf(stderr, "as9888-calibd: %s/%s: cannot set %s: %s\n",
+				dir, bias[axis], want, strerror(-ret));
+			return ret;
+		}
+	}
+
+	snprintf(want, sizeof(want), "%d %d %d %d %d %d %d",
+		 rec.level_mean_q16[0], rec.level_mean_q16[1],
+		 rec.level_mean_q16[2], rec.t_level_mdegc, rec.gravity[0],
+		 rec.gravity[1], rec.gravity[2]);
+	ret = write_attr(dir, "in_accel_calibration", want);
+	if (!ret)
+		ret = read_attr(dir, "in_accel_calibration", got, sizeof(got)) < 0 ?
+		      -EIO : strcmp(want, got) ? -EIO : 0;
+	if (ret) {
+		fprintf(stderr, "as9888-calibd: %s/in_accel_calibration: cannot set \"%s\": %s\n",
+			dir, want, strerror(-ret));
+		return ret;
+	}
+
+	return 0;
+}
