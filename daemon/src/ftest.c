@@ -761,6 +761,35 @@ static void store_level(struct ftest_result *res,
 	res->have_level = true;
 }
 
+/*
+ * One level run with its judgments: N samples at a stable temperature, then
+ * their mean, temperature and the sensitivity there.
+ */
+static int level_pass(struct ftest_ctx *x, uint32_t n, const char *step,
+		      const char *const steps[], int32_t mean[AS9888_AXES],
+		      int32_t *t_l, int32_t st[AS9888_AXES])
+{
+	struct level_run run;
+	int ret;
+
+	ret = level_collect_stable(x, n, step, &run);
+	if (ret || x->stop)
+		return ret;
+	level_judge(x, &run, steps);
+	if (x->stop)
+		return 0;
+
+	means(&run, mean);
+	ret = level_temperature(&run, t_l);
+	if (!ret)
+		ret = sensitivities(&x->res->ee, *t_l, st);
+	if (ret)
+		judge(x, steps[1], "level temperature", false, "-30..85 degC",
+		      "cannot use the level temperature");
+
+	return ret;
+}
+
 /* Step 3: accelerometer function test and level data */
 static int step3(struct ftest_ctx *x)
 {
@@ -768,7 +797,6 @@ static int step3(struct ftest_ctx *x)
 	const struct as9888_eeprom *ee = &res->ee;
 	struct transport *t = x->chip.t;
 	int32_t mean[AS9888_AXES], st[AS9888_AXES], t_l;
-	struct level_run run;
 	int8_t g[AS9888_AXES];
 	uint8_t dac[AS9888_AXES];
 	uint32_t n;
@@ -785,22 +813,9 @@ static int step3(struct ftest_ctx *x)
 	if (ret || x->stop)
 		return ret;
 
-	ret = level_collect_stable(x, n, "3-3", &run);
+	ret = level_pass(x, n, "3-3", pass1_steps, mean, &t_l, st);
 	if (ret || x->stop)
 		return ret;
-	level_judge(x, &run, pass1_steps);
-	if (x->stop)
-		return 0;
-
-	means(&run, mean);
-	ret = level_temperature(&run, &t_l);
-	if (!ret)
-		ret = sensitivities(ee, t_l, st);
-	if (ret) {
-		judge(x, "3-23", "level temperature", false, "-30..85 degC",
-		      "cannot use the level temperature");
-		return ret;
-	}
 	ret = posture(x, mean, st, g);
 	if (ret && x->stop)
 		return 0;
@@ -816,18 +831,8 @@ static int step3(struct ftest_ctx *x)
 		return ret;
 
 	/* 3-27..3-47: again with DACopt */
-	ret = level_collect_stable(x, n, "3-28", &run);
+	ret = level_pass(x, n, "3-28", pass2_steps, mean, &t_l, st);
 	if (ret || x->stop)
-		return ret;
-	level_judge(x, &run, pass2_steps);
-	if (x->stop)
-		return 0;
-
-	means(&run, mean);
-	ret = level_temperature(&run, &t_l);
-	if (!ret)
-		ret = sensitivities(ee, t_l, st);
-	if (ret)
 		return ret;
 
 	store_level(res, mean, t_l, g);

@@ -10,30 +10,8 @@ calibd=${1:?usage: cli.sh PATH-TO-as9888-calibd}
 work=$(mktemp -d /tmp/as9888-cli-XXXXXX)
 trap 'rm -rf "$work"' EXIT
 export ASAN_OPTIONS=detect_leaks=1
-n=0
-fail=0
-
-check() {
-	local what=$1
-	shift
-	n=$((n + 1))
-	if "$@"; then
-		echo "ok $n - $what"
-	else
-		fail=$((fail + 1))
-		echo "not ok $n - $what"
-	fi
-}
-
-# run CMD...: sets rc, out, err
-run() {
-	"$calibd" "$@" >"$work/out" 2>"$work/err"
-	rc=$?
-	out=$(cat "$work/out")
-	err=$(cat "$work/err")
-}
-
-says() { grep -q -- "$1" "$work/$2"; }
+# shellcheck source=../lib/tap.sh
+. "$(dirname "$0")/../lib/tap.sh"
 json() { python3 -c "import json,sys; d=json.load(open('$work/out')); sys.exit(0 if ($1) else 1)"; }
 
 rec=$work/state/calibration
@@ -84,7 +62,7 @@ run show --record "$rec" --temperature 86
 check "show --temperature 86: exit 2" test $rc -eq 2
 
 run restore $vt --record "$rec"
-check "restore: exit 0, quiet" test $rc -eq 0 -a -z "$out$err"
+check "restore: exit 0, quiet" eval '[ $rc -eq 0 ] && [ ! -s "$work/out" ] && [ ! -s "$work/err" ]'
 
 printf 'eeprom = 9a 71 15 5c 81 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 50\n' >"$work/other.unit"
 run restore $vt --record "$rec" --unit "$work/other.unit"
@@ -121,5 +99,4 @@ printf 'up = 0 0 1\nnoise = lots\n' >"$work/bad.unit"
 run factory-test $vt --record "$rec" --unit "$work/bad.unit"
 check "bad unit file: exit 1 with file and line" eval '[ $rc -eq 1 ] && says "bad.unit:2" err'
 
-echo "1..$n"
-[ $fail -eq 0 ]
+tap_end

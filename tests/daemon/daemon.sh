@@ -23,24 +23,12 @@ fi
 
 work=$(mktemp -d /tmp/as9888-daemon-XXXXXX)
 export ASAN_OPTIONS=detect_leaks=1
-n=0
-fail=0
 pid=
 cleanup() { [ -n "$pid" ] && kill "$pid" 2>/dev/null; rm -rf "$work"; }
 trap cleanup EXIT
-
-check() {
-	local what=$1
-	shift
-	n=$((n + 1))
-	if "$@"; then
-		echo "ok $n - $what"
-	else
-		fail=$((fail + 1))
-		echo "not ok $n - $what"
-		sed 's/^/# /' "$work/log" | tail -10
-	fi
-}
+# shellcheck source=../lib/tap.sh
+. "$(dirname "$0")/../lib/tap.sh"
+TAP_SHOW="$work/log"
 
 # uevent MESSAGE-FIELDS...: multicast a kernel-style uevent (group 1)
 uevent() {
@@ -157,5 +145,4 @@ pid=
 check "SIGTERM: clean exit, socket removed" \
 	eval '[ $rc -eq 0 ] && [ ! -e "$sock" ] && grep -q "stopped: calibration applied 3 times, 0 failures" "$work/log"'
 
-echo "1..$n"
-[ $fail -eq 0 ]
+tap_end

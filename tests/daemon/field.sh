@@ -11,28 +11,11 @@ calibd=${1:?usage: field.sh PATH-TO-as9888-calibd}
 work=$(mktemp -d /tmp/as9888-field-XXXXXX)
 trap 'rm -rf "$work"' EXIT
 export ASAN_OPTIONS=detect_leaks=1
-n=0
-fail=0
+# shellcheck source=../lib/tap.sh
+. "$(dirname "$0")/../lib/tap.sh"
+TAP_SHOW="$work/out $work/err"
 rec=$work/state/calibration
 vt="--sim-clock virtual"
-
-check() {
-	local what=$1
-	shift
-	n=$((n + 1))
-	if "$@"; then
-		echo "ok $n - $what"
-	else
-		fail=$((fail + 1))
-		echo "not ok $n - $what"
-		sed 's/^/# /' "$work/out" "$work/err" 2>/dev/null | tail -15
-	fi
-}
-run() {
-	"$calibd" "$@" >"$work/out" 2>"$work/err"
-	rc=$?
-}
-says() { grep -q -- "$1" "$work/$2"; }
 unit() { printf '%b' "$2" >"$work/$1.unit"; echo "$work/$1.unit"; }
 valid() { "$calibd" show --record "$1" >/dev/null 2>&1; }
 
@@ -136,5 +119,4 @@ if command -v strace >/dev/null; then
 		eval '[ $hits -ge 8 ] && [ $bad -eq 0 ]'
 fi
 
-echo "1..$n"
-[ $fail -eq 0 ]
+tap_end
