@@ -78,6 +78,9 @@
 /* Standard gravity, nm/s^2 */
 #define AS9888_G_NANO			9806650000LL
 #define AS9888_NANO			1000000000LL
+#define AS9888_MILLI			1000
+/* as9888_mag_adjust_q8() returns 1/256 LSB */
+#define AS9888_Q8_ONE			256
 
 /*
  * Temperature, datasheet section 5: T = (176 - TMPS) / 1.6 degC, i.e.
@@ -341,6 +344,8 @@ static int as9888_power_down(struct as9888_data *data)
  * A mode is entered from power-down only, and not before t_PD has passed:
  * a write that breaks this rule is ignored by the chip, so wait for it.
  * The accepted MS write also deasserts INT1, so INT1ST never needs reading.
+ *
+ * Return: 0 or a negative error number.
  */
 static int as9888_start(struct as9888_data *data, u8 mode, bool men)
 {
@@ -1326,10 +1331,10 @@ static ssize_t selftest_store(struct device *dev, struct device_attribute *attr,
 /* " X.XXX": an adjusted reading in LSB, rounded to 1/1000 */
 static int as9888_emit_q8(char *buf, int at, s32 q8)
 {
-	s64 milli = as9888_div_round_s64((s64)q8 * 1000, 1 << 8);
+	s64 milli = as9888_div_round_s64((s64)q8 * AS9888_MILLI, AS9888_Q8_ONE);
 	u64 abs_milli = milli < 0 ? -milli : milli;
 	u32 frac;
-	u64 whole = div_u64_rem(abs_milli, 1000, &frac);
+	u64 whole = div_u64_rem(abs_milli, AS9888_MILLI, &frac);
 
 	return sysfs_emit_at(buf, at, " %s%llu.%03u", milli < 0 ? "-" : "",
 			     whole, frac);
