@@ -30,7 +30,8 @@ if [ -z "$(driver_c_files "$SRC_ROOT")" ]; then
 	echo "dkms-check: no driver sources yet"
 	exit 3
 fi
-mapfile -t MISSING < <(driver_missing_sources "$SRC_ROOT")
+# (the KUnit module is not part of the DKMS build, so its source may be absent)
+mapfile -t MISSING < <(driver_missing_sources "$SRC_ROOT" | grep -v '_kunit' || true)
 if [ "${#MISSING[@]}" -gt 0 ]; then
 	echo "dkms-check: $AS9888_DRIVER_REL/Makefile needs sources that do not exist (yet): ${MISSING[*]}" >&2
 	exit 1
