@@ -11,7 +11,7 @@
 # prepared by scripts/kernel-trees.sh ($AS9888_CACHE/kunit/linux-<k>), whose
 # drivers/iio/imu/{Kconfig,Makefile} are replaced by edited copies that hook
 # in as9888/ (idempotent; the pristine tree and the repository are never
-# written to), and into which the driver directory is copied afresh on every
+# written to), and into which the driver directory is synchronised on every
 # run. The build directory is $AS9888_CACHE/kunit/build-<k>; the kunitconfig
 # is drivers/iio/imu/as9888/.kunitconfig.
 #
@@ -44,6 +44,7 @@ KUNIT_DIR="$AS9888_CACHE/kunit"
 [ -f "$DRV/as9888_calib_kunit.c" ] || die "no KUnit suite in $DRV"
 [ -f "$KUNITCONFIG" ] || die "no $KUNITCONFIG"
 mkdir -p "$KUNIT_DIR" "$LOG_DIR"
+ensure_pkgs rsync
 
 # Replace a hard-linked file of the tree copy by a private copy (so that
 # editing it leaves the pristine tree alone) and append a line once.
@@ -75,10 +76,11 @@ prepare_tree() {
 	hook_line "$tree/drivers/iio/imu/Kconfig" 'source "drivers/iio/imu/as9888/Kconfig"'
 	hook_line "$tree/drivers/iio/imu/Makefile" 'obj-y += as9888/'
 
-	# The driver sources, fresh on every run (never the repository itself)
-	rm -rf "$tree/$AS9888_DRIVER_REL"
+	# The driver sources (a copy, never the repository itself): files whose
+	# content changed get a new mtime, so make rebuilds exactly those, also
+	# when the copy goes back to older sources.
 	mkdir -p "$tree/$AS9888_DRIVER_REL"
-	cp -a "$DRV"/. "$tree/$AS9888_DRIVER_REL/"
+	rsync -r --checksum --no-times --delete "$DRV"/ "$tree/$AS9888_DRIVER_REL/"
 }
 
 FAIL=0
