@@ -6,6 +6,11 @@
 #   scripts/test.sh            everything
 #   scripts/test.sh userspace  only the userspace build and tests
 #
+# Kernel: the two kernel trees from Debian's packages (6.1 LTS and the
+# newest, 7.2), the driver built against both with W=1, sparse and
+# checkpatch --strict, the devicetree binding checked with dt-schema, the
+# KUnit suite on both under UML, and the DKMS build on Debian 12's headers.
+#
 # Userspace: the Meson suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
 # conformance, simulator, factory test engine, record, save failure
@@ -79,7 +84,13 @@ stage "daemon idle cost and restore latency (release build)" \
 	"$top/tests/daemon/daemon.sh" "$build/release/daemon/as9888-calibd"
 
 if [ "$what" = all ]; then
-	:
+	stage "kernel trees (Debian linux-source 6.1 and 7.2, sparse)" \
+		"$top/scripts/kernel-trees.sh" all
+	stage "driver: W=1, sparse, checkpatch --strict on 6.1 and 7.2" \
+		"$top/scripts/kernel-build.sh" all
+	stage "devicetree binding (dt-schema)" "$top/scripts/dt-check.sh"
+	stage "KUnit on 6.1 and 7.2 (UML)" "$top/scripts/kunit.sh" all
+	stage "DKMS build against Debian 12's headers" "$top/scripts/dkms-check.sh"
 fi
 
 echo
