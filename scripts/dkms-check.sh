@@ -41,6 +41,7 @@ CONF="$SRC_ROOT/dkms.conf"
 [ -f "$CONF" ] || die "no dkms.conf"
 
 T_START=$(now)
+cache_lock dkms-check
 ensure_pkgs dkms linux-headers-amd64 build-essential kmod openssl rsync
 
 # The distro kernel the metapackage points at, e.g. 6.1.0-56-amd64.

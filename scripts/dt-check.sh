@@ -43,6 +43,7 @@ case "$K" in
 esac
 
 T_START=$(now)
+cache_lock dt-check
 DT_DIR="$(cd "${AS9888_DT_DIR:-$AS9888_REPO/dt-bindings}" && pwd)"
 KSRC=$(ksrc "$K")
 WORK="$AS9888_CACHE/dt-check"

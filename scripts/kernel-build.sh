@@ -49,6 +49,7 @@ esac
 SRC_ROOT="$(cd "${AS9888_SRC:-$AS9888_REPO}" && pwd)"
 DRV="$SRC_ROOT/$AS9888_DRIVER_REL"
 T_START=$(now)
+cache_lock kernel-build
 
 mapfile -t CFILES < <(driver_c_files "$SRC_ROOT")
 if [ "${#CFILES[@]}" -eq 0 ]; then

@@ -95,3 +95,14 @@ driver_missing_sources() {
 		[ -f "$dir/$c" ] || printf '%s\n' "$c"
 	done
 }
+
+# cache_lock NAME: serialise runs of one script that share a cache dir (the
+# lock is held until the script exits). Uses file descriptor 8.
+cache_lock() {
+	mkdir -p "$AS9888_CACHE"
+	exec 8>"$AS9888_CACHE/.$1.lock"
+	if ! flock -n 8; then
+		log "another $1 run holds $AS9888_CACHE/.$1.lock; waiting"
+		flock 8
+	fi
+}
