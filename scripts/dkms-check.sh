@@ -19,6 +19,9 @@
 # dkms's make.log.
 #
 # Exit status: 0 built cleanly, 1 failure, 3 no driver sources yet (not run).
+#
+# Timings (2 cores, shared): warm 7-17 s; cold (apt-get install dkms) 33 s,
+# more if linux-headers-amd64 has to be installed too.
 # Environment: AS9888_CACHE; AS9888_SRC (source root; default this repo).
 set -euo pipefail
 

@@ -25,6 +25,10 @@
 # PyPI's dtschema is installed into a venv in the cache and used instead.
 #
 # Exit status: 0 clean, 1 errors/warnings, 2 usage.
+#
+# Timings (2 cores, shared): warm 4-7 s; cold 33 s (apt-get install of
+# dt-schema, device-tree-compiler, yamllint), plus kernel-trees.sh if no tree
+# is prepared. PyPI path: 28 s the first time (venv + pip), then about 13 s.
 # Environment: AS9888_CACHE; AS9888_DT_DIR (default: the repository's
 # dt-bindings/, handy for checking a deliberately broken copy);
 # AS9888_DT_PYPI=1 uses PyPI's dtschema even when Debian's works.
