@@ -24,6 +24,15 @@
 #
 # Idempotent: stamp files make a warm run take about a second. Delete
 # $AS9888_CACHE/stamps/<name> to redo one step, or the cache dir to start over.
+# Changing CONFIG_FRAGMENT (or gcc) rebuilds the trees incrementally.
+#
+# Timings, 2 cores shared with other jobs (load 2-6), -j2:
+#   cold, empty cache: 1281 s (sparse 36 s, 6.1 unpack 19 s + build 667 s,
+#     7.2 download 2 s + unpack 15 s + build 541 s; 20 min of CPU in all,
+#     so about 11 min on two idle cores). An earlier cold run without
+#     CONFIG_SMP at load 2-3 took 628 s (6.1 build 212 s, 7.2 build 381 s).
+#   warm: 0.2-0.3 s.
+# Disk: about 1.5 GB (6.1) + 1.8 GB (7.2) of source, 0.3 GB of build output.
 #
 # Environment: AS9888_CACHE (default ~/.cache/as9888), AS9888_JOBS (default 2).
 set -euo pipefail
