@@ -1,0 +1,144 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# vm-run.sh [6.1|7.2|all]
+#
+# The real-kernel test bench: for each kernel version, builds (cached) the
+# debug kernel, the driver and the test adapter (scripts/vm-kernel.sh) and
+# as9888-calibd linked statically, packs an initramfs (busybox-static, the
+# modules, the daemon, tests/vm/guest/) and boots it in QEMU (TCG) under a
+# timeout. The guest prints TAP and an end marker, then reboots.
+#
+# A kernel fails when a test fails, when the end marker is missing (hang,
+# panic) or on any kernel splat in the serial log (BUG, WARNING, KASAN,
+# lockdep, Oops, panic, kmemleak leak, hung task). Prints
+# "<k>: N passed, N failed" per kernel; exit status 0 only when all pass.
+#
+# Everything goes to $AS9888_CACHE/vm/ (logs: $AS9888_CACHE/logs/vm-run-<k>.log).
+# Environment: AS9888_CACHE, AS9888_JOBS, AS9888_VM_TIMEOUT (s, default 600).
+set -euo pipefail
+
+# shellcheck source-path=SCRIPTDIR source=kernel-common.sh
+. "$(dirname "$0")/kernel-common.sh"
+
+case "${1:-all}" in
+6.1 | 7.2) WANT=("$1") ;;
+all) WANT=("${AS9888_KERNELS[@]}") ;;
+*)
+	echo "usage: $0 [6.1|7.2|all]" >&2
+	exit 2
+	;;
+esac
+
+VM_DIR="$AS9888_CACHE/vm"
+GUEST="$AS9888_REPO/tests/vm/guest"
+TIMEOUT="${AS9888_VM_TIMEOUT:-600}"
+mkdir -p "$VM_DIR" "$LOG_DIR"
+T_START=$(now)
+
+ensure_pkgs busybox-static qemu-system-x86 cpio gzip meson ninja-build \
+	pkg-config libgpiod-dev libcmocka-dev gcc gpiod file
+
+# as9888-calibd, statically linked (glibc + libgpiod 1.6 static libs)
+build_daemon() {
+	local b="$VM_DIR/daemon-static" t
+	t=$(now)
+	if [ ! -f "$b/build.ninja" ]; then
+		meson setup "$b" "$AS9888_REPO" -Dprefer_static=true \
+			-Dc_link_args=-static -Dbuildtype=release \
+			>"$LOG_DIR/vm-daemon.log" 2>&1 ||
+			die "meson setup failed, see $LOG_DIR/vm-daemon.log"
+	fi
+	ninja -C "$b" daemon/as9888-calibd >>"$LOG_DIR/vm-daemon.log" 2>&1 ||
+		die "static as9888-calibd build failed, see $LOG_DIR/vm-daemon.log"
+	file -L "$b/daemon/as9888-calibd" | grep -q 'statically linked' ||
+		die "$b/daemon/as9888-calibd is not statically linked"
+	DAEMON="$b/daemon/as9888-calibd"
+	log "as9888-calibd (static) ready in $(since "$t")"
+}
+
+# The kernel's tools/iio (lsiio, iio_generic_buffer), linked statically
+build_tools_iio() {
+	local o="$VM_DIR/tools-iio/"
+	mkdir -p "$o"
+	make -C "$(ksrc 7.2)/tools/iio" OUTPUT="$o" LDFLAGS=-static \
+		>"$LOG_DIR/vm-tools-iio.log" 2>&1 ||
+		die "tools/iio build failed, see $LOG_DIR/vm-tools-iio.log"
+	TOOLS_IIO="$o"
+}
+
+# copy_with_libs ROOT BINARY: a dynamic program and the libraries it needs
+copy_with_libs() {
+	local root="$1" bin="$2" lib
+	cp "$bin" "$root/usr/bin/"
+	for lib in $(ldd "$bin" | grep -o '/[^ ]*'); do
+		mkdir -p "$root$(dirname "$lib")"
+		cp -L "$lib" "$root$lib"
+	done
+}
+
+pack_initramfs() {
+	local k="$1" root="$VM_DIR/initramfs-$k" out="$VM_DIR/initramfs-$k.cpio.gz" a
+	rm -rf "$root"
+	mkdir -p "$root"/{bin,sbin,usr/bin,usr/sbin,proc,sys,dev,tmp,run,var/lib/as9888} \
+		"$root/lib/modules/as9888" "$root/tests"
+	cp /bin/busybox "$root/bin/busybox"
+	for a in $("$root/bin/busybox" --list); do
+		[ "$a" = busybox ] || ln -sf busybox "$root/bin/$a"
+	done
+	cp "$DAEMON" "$root/bin/as9888-calibd"
+	cp "$TOOLS_IIO/lsiio" "$TOOLS_IIO/iio_generic_buffer" "$root/usr/bin/"
+	for a in gpiodetect gpioinfo gpioget; do
+		copy_with_libs "$root" "/usr/bin/$a"
+	done
+	cp "$VM_DIR/mod-$k/ko/"*.ko "$root/lib/modules/as9888/"
+	cp "$GUEST/init" "$root/init"
+	cp "$GUEST/lib.sh" "$GUEST/run-all.sh" "$root/tests/"
+	cp -r "$GUEST/tests" "$root/tests/tests"
+	chmod +x "$root/init" "$root/tests/run-all.sh"
+	(cd "$root" && find . -print0 | cpio --null -o -H newc --quiet | gzip -1) >"$out"
+	INITRD="$out"
+}
+
+SPLAT_RE='BUG:|WARNING:|KASAN|UBSAN|general protection|Oops|Kernel panic|possible recursive locking|possible circular locking|possible irq lock inversion|inconsistent lock state|suspicious RCU usage|unreferenced object|blocked for more than|scheduling while atomic|sleeping function called from invalid context|Call Trace'
+
+RESULTS=()
+FAILED=0
+run_one() {
+	local k="$1" log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail splat
+	pack_initramfs "$k"
+	t=$(now)
+	log "$k: booting $VM_DIR/build-$k/arch/x86/boot/bzImage (log: $log)"
+	timeout --foreground -k 10 "$TIMEOUT" qemu-system-x86_64 -accel tcg -m 1G \
+		-nographic -no-reboot -monitor none -serial stdio \
+		-kernel "$VM_DIR/build-$k/arch/x86/boot/bzImage" -initrd "$INITRD" \
+		-append "console=ttyS0 loglevel=5 oops=panic panic_on_warn=1 panic=-1 kmemleak=on" \
+		</dev/null >"$log" 2>&1 || rc=$?
+	tr -d '\r' <"$log" >"$log.tmp" && mv "$log.tmp" "$log"
+	pass=$(grep -c '^ok ' "$log" || true)
+	fail=$(grep -c '^not ok ' "$log" || true)
+	grep -E '^(not ok|# )' "$log" | grep -v '^# dmesg' | sed "s/^/[$k] /" || true
+	if ! grep -q '^AS9888-VM-END' "$log"; then
+		fail=$((fail + 1))
+		warn "$k: no end marker (qemu exit $rc; timeout is $TIMEOUT s): see $log"
+		tail -n 30 "$log" >&2
+	fi
+	splat=$(grep -E "$SPLAT_RE" "$log" || true)
+	if [ -n "$splat" ]; then
+		fail=$((fail + 1))
+		warn "$k: kernel splat in the serial log ($log):"
+		printf '%s\n' "$splat" | head -n 20 >&2
+	fi
+	[ "$fail" -eq 0 ] || FAILED=1
+	RESULTS+=("$k: $pass passed, $fail failed ($(since "$t") in QEMU)")
+}
+
+build_daemon
+build_tools_iio
+for k in "${WANT[@]}"; do
+	"$AS9888_REPO/scripts/vm-kernel.sh" "$k"
+	run_one "$k"
+done
+for r in "${RESULTS[@]}"; do echo "$r"; done
+log "done in $(since "$T_START")"
+exit "$FAILED"

@@ -1,0 +1,949 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * AS9888 test adapter: the shared chip model (tests/model) on a simulated
+ * board, for the real-kernel test bench.
+ *
+ * The module presents one AS9888 the way a board would:
+ *  - an I2C adapter "as9888-sim-i2c" on which the chip answers at 0x0c;
+ *    a write message [reg, data...] is one model write, a write of the
+ *    register followed by a read (repeated start) is one model read, a
+ *    lone read continues at the auto-incremented address. A transfer the
+ *    model NAKs (boot time, RSTN low, the "nak" fault) fails with -ENXIO.
+ *  - a GPIO chip "as9888-sim-gpio" with the lines AS9888_RSTN (the chip's
+ *    reset input: a consumer drives it), AS9888_INT1 and AS9888_INT2 (the
+ *    chip's outputs, with interrupts from the kernel's interrupt
+ *    simulator, edge triggered).
+ *  - an SPI controller "as9888-sim-spi" (mode 3): a message is one chip
+ *    select; its first byte is R/W + register, the rest the data. The
+ *    model is then in SPI mode (a failed transfer reads 0xff).
+ *  - the device "as9888" at 0x0c (or on SPI chip select 0 with the module
+ *    parameter spi=1) with INT1 as its interrupt, RSTN as its
+ *    reset-gpios (software node reference where gpiolib supports it, a GPIO
+ *    lookup table otherwise) and a mount matrix.
+ * The model runs in real time: an hrtimer is armed at the model's next
+ * internal event, advances the model and raises INT1/INT2 on their edges.
+ *
+ * Control and measurement in debugfs, directory as9888_sim/:
+ *  unit	write a unit description (datasheet section 8): parsed, the
+ *		device removed, the chip powered on as that unit and the
+ *		device instantiated again; read: the description in use
+ *  present	"1": instantiate the device (after a power cycle of the
+ *		chip), "0": remove it; read: 0/1
+ *  stats	bus and chip counters; any write zeroes the bus counters
+ *  bus		"i2c-N" of the adapter, and the client name
+ */
+
+#include <linux/debugfs.h>
+#include <linux/gpio/driver.h>
+#include <linux/gpio/machine.h>
+#include <linux/hrtimer.h>
+#include <linux/i2c.h>
+#include <linux/interrupt.h>
+#include <linux/irq.h>
+#include <linux/irq_sim.h>
+#include <linux/irqdomain.h>
+#include <linux/ktime.h>
+#include <linux/module.h>
+#include <linux/mutex.h>
+#include <linux/platform_device.h>
+#include <linux/property.h>
+#include <linux/regulator/machine.h>
+#include <linux/slab.h>
+#include <linux/spi/spi.h>
+#include <linux/spinlock.h>
+#include <linux/uaccess.h>
+#include <linux/version.h>
+
+#if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 2, 0)
+#include <linux/gpio/property.h>
+#define AS9888_SIM_SWNODE_GPIO	1
+#endif
+
+#include "as9888_model.h"
+#include "as9888_unit.h"
+
+#define AS9888_SIM_ADDR		0x0c
+#define AS9888_SIM_UNIT_MAX	4096
+
+enum as9888_sim_line {
+	AS9888_SIM_RSTN = 0,
+	AS9888_SIM_INT1,
+	AS9888_SIM_INT2,
+	AS9888_SIM_NLINES,
+};
+
+static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
+	"AS9888_RSTN", "AS9888_INT1", "AS9888_INT2",
+};
+
+/**
+ * struct as9888_sim - the simulated board
+ * @lock:	protects @model, @pin, @rstn, @ptr and the bus counters;
+ *		taken in the hrtimer (hard irq) and in process context
+ * @model:	the chip
+ * @pin:	INT1/INT2 levels last seen (edge detection)
+ * @rstn:	RSTN level driven by the consumer
+ * @ptr:	register address for a read without a preceding write
+ * @xfers:	master_xfer calls and SPI messages
+ * @msgs:	I2C messages
+ * @model_xfers: model transfers (reads + writes) since the last zeroing
+ * @model_naks:	failed model transfers since the last zeroing
+ * @irqs:	INT edges delivered to the interrupt simulator
+ * @timer:	wakes up at the model's next event
+ * @cfg_lock:	serialises unit/present changes
+ * @unit:	the unit in use
+ * @unit_text:	its description (NUL-terminated)
+ * @pdev:	parent device of the adapter and the GPIO chip
+ * @adap:	the I2C adapter
+ * @gc:		the GPIO chip
+ * @domain:	the interrupt simulator's domain, one hwirq per line
+ * @ctlr:	the SPI controller
+ * @client:	the AS9888 on I2C, or NULL
+ * @spi:	the AS9888 on SPI, or NULL
+ * @dir:	debugfs directory
+ */
+struct as9888_sim {
+	spinlock_t lock;
+	struct as9888_model model;
+	bool pin[2];
+	bool rstn;
+	u8 ptr;
+	u64 xfers;
+	u64 msgs;
+	u64 model_xfers;
+	u64 model_naks;
+	u64 irqs;
+	struct hrtimer timer;
+
+	struct mutex cfg_lock;
+	struct as9888_unit unit;
+	char *unit_text;
+
+	struct platform_device *pdev;
+	struct i2c_adapter adap;
+	struct gpio_chip gc;
+	struct irq_domain *domain;
+	struct spi_controller *ctlr;
+	struct i2c_client *client;
+	struct spi_device *spi;
+	struct dentry *dir;
+};
+
+static struct as9888_sim *sim;
+
+static bool spi;
+module_param(spi, bool, 0444);
+MODULE_PARM_DESC(spi, "put the chip on the SPI controller instead of I2C");
+
+static const struct software_node as9888_sim_gpio_node = {
+	.name = "as9888-sim-gpio",
+};
+
+static const char * const as9888_sim_mount_matrix[] = {
+	"0", "1", "0",
+	"-1", "0", "0",
+	"0", "0", "1",
+};
+
+static const struct property_entry as9888_sim_props[] = {
+	PROPERTY_ENTRY_STRING("compatible", "alsen,as9888"),
+	PROPERTY_ENTRY_STRING_ARRAY("mount-matrix", as9888_sim_mount_matrix),
+#ifdef AS9888_SIM_SWNODE_GPIO
+	PROPERTY_ENTRY_GPIO("reset-gpios", &as9888_sim_gpio_node,
+			    AS9888_SIM_RSTN, GPIO_ACTIVE_LOW),
+#endif
+	{ }
+};
+
+static const struct software_node as9888_sim_dev_node = {
+	.name = "as9888-sim-chip",
+	.properties = as9888_sim_props,
+};
+
+#ifndef AS9888_SIM_SWNODE_GPIO
+static struct gpiod_lookup_table as9888_sim_lookup = {
+	/* .dev_id is set once the adapter number is known */
+	.table = {
+		GPIO_LOOKUP("as9888-sim-gpio", AS9888_SIM_RSTN, "reset",
+			    GPIO_ACTIVE_LOW),
+		{ }
+	},
+};
+
+static char as9888_sim_dev_id[32];
+#endif
+
+/* --- model, pins and timer (sim->lock held) ----------------------------- */
+
+/* Arm the timer at the model's next event; caller holds sim->lock. */
+static void as9888_sim_arm(struct as9888_sim *s)
+{
+	u64 next = as9888_model_next_event_ns(&s->model);
+
+	if (next == U64_MAX)
+		hrtimer_try_to_cancel(&s->timer);
+	else
+		hrtimer_start(&s->timer, ns_to_ktime(next), HRTIMER_MODE_ABS);
+}
+
+/*
+ * Sample INT1/INT2 at @now and return the lines that need an interrupt:
+ * bit n set for line AS9888_SIM_INT1 + n. Caller holds sim->lock.
+ */
+static unsigned int as9888_sim_edges(struct as9888_sim *s, u64 now)
+{
+	unsigned int fire = 0;
+	int i;
+
+	for (i = 0; i < 2; i++) {
+		bool lvl = as9888_model_pin(&s->model, now, i);
+		unsigned int irq, type;
+
+		if (lvl == s->pin[i])
+			continue;
+		s->pin[i] = lvl;
+		irq = irq_find_mapping(s->domain, AS9888_SIM_INT1 + i);
+		if (!irq)
+			continue;
+		type = irq_get_trigger_type(irq);
+		if (type == IRQ_TYPE_NONE)
+			type = IRQ_TYPE_EDGE_RISING;
+		if ((lvl && (type & IRQ_TYPE_EDGE_RISING)) ||
+		    (!lvl && (type & IRQ_TYPE_EDGE_FALLING)))
+			fire |= BIT(i);
+	}
+	return fire;
+}
+
+/* Deliver the edges found by as9888_sim_edges(); without sim->lock. */
+static void as9888_sim_fire(struct as9888_sim *s, unsigned int fire)
+{
+	unsigned long flags;
+	int i;
+
+	for (i = 0; i < 2; i++) {
+		unsigned int irq;
+
+		if (!(fire & BIT(i)))
+			continue;
+		irq = irq_find_mapping(s->domain, AS9888_SIM_INT1 + i);
+		if (!irq)
+			continue;
+		irq_set_irqchip_state(irq, IRQCHIP_STATE_PENDING, true);
+		spin_lock_irqsave(&s->lock, flags);
+		s->irqs++;
+		spin_unlock_irqrestore(&s->lock, flags);
+	}
+}
+
+static enum hrtimer_restart as9888_sim_timer_fn(struct hrtimer *t)
+{
+	struct as9888_sim *s = container_of(t, struct as9888_sim, timer);
+	unsigned int fire;
+	unsigned long flags;
+	u64 now;
+
+	spin_lock_irqsave(&s->lock, flags);
+	now = ktime_get_ns();
+	as9888_model_advance(&s->model, now);
+	fire = as9888_sim_edges(s, now);
+	as9888_sim_arm(s);
+	spin_unlock_irqrestore(&s->lock, flags);
+
+	as9888_sim_fire(s, fire);
+	return HRTIMER_NORESTART;
+}
+
+/* Power the chip on as @unit; caller holds cfg_lock, device removed. */
+static void as9888_sim_power_on(struct as9888_sim *s)
+{
+	unsigned long flags;
+
+	spin_lock_irqsave(&s->lock, flags);
+	as9888_model_init(&s->model, &s->unit, ktime_get_ns());
+	as9888_model_set_bus(&s->model, spi ? AS9888_BUS_SPI : AS9888_BUS_I2C);
+	s->pin[0] = false;
+	s->pin[1] = false;
+	s->ptr = 0;
+	if (!s->rstn)
+		as9888_model_set_rstn(&s->model, ktime_get_ns(), false);
+	as9888_sim_arm(s);
+	spin_unlock_irqrestore(&s->lock, flags);
+}
+
+/* --- I2C ------------------------------------------------------------------ */
+
+static int as9888_sim_xfer(struct i2c_adapter *adap, struct i2c_msg *msgs,
+			   int num)
+{
+	struct as9888_sim *s = i2c_get_adapdata(adap);
+	unsigned int fire;
+	unsigned long flags;
+	int i, ret = 0;
+	u64 now;
+
+	spin_lock_irqsave(&s->lock, flags);
+	s->xfers++;
+	now = ktime_get_ns();
+	/* Events due before this access happen first, as on the chip. */
+	as9888_model_advance(&s->model, now);
+	fire = as9888_sim_edges(s, now);
+
+	for (i = 0; i < num && !ret; i++) {
+		struct i2c_msg *m = &msgs[i];
+		bool pair;
+
+		s->msgs++;
+		if (m->addr != AS9888_SIM_ADDR || (m->flags & I2C_M_TEN)) {
+			ret = -ENXIO;
+			break;
+		}
+		now = ktime_get_ns();
+		if (m->flags & I2C_M_RD) {
+			ret = as9888_model_read(&s->model, now, s->ptr,
+						m->buf, m->len);
+			s->ptr += m->len;
+		} else if (!m->len) {
+			ret = as9888_model_write(&s->model, now, s->ptr,
+						 NULL, 0);
+		} else {
+			s->ptr = m->buf[0];
+			pair = m->len == 1 && i + 1 < num &&
+			       (msgs[i + 1].flags & I2C_M_RD);
+			/* reg + repeated start + read: one model read */
+			if (pair)
+				continue;
+			ret = as9888_model_write(&s->model, now, s->ptr,
+						 m->buf + 1, m->len - 1);
+			s->ptr += m->len - 1;
+		}
+		s->model_xfers++;
+		if (ret)
+			s->model_naks++;
+	}
+
+	fire |= as9888_sim_edges(s, ktime_get_ns());
+	as9888_sim_arm(s);
+	spin_unlock_irqrestore(&s->lock, flags);
+
+	as9888_sim_fire(s, fire);
+	if (ret)
+		return -ENXIO;
+	return num;
+}
+
+static u32 as9888_sim_func(struct i2c_adapter *adap)
+{
+	return I2C_FUNC_I2C | I2C_FUNC_SMBUS_EMUL;
+}
+
+static const struct i2c_algorithm as9888_sim_algo = {
+	.master_xfer = as9888_sim_xfer,
+	.functionality = as9888_sim_func,
+};
+
+/* --- SPI ------------------------------------------------------------------ */
+
+#define AS9888_SIM_SPI_MAX	256
+
+static int as9888_sim_spi_transfer(struct spi_controller *ctlr,
+				   struct spi_message *msg)
+{
+	struct as9888_sim *s = spi_controller_get_devdata(ctlr);
+	u8 tx[AS9888_SIM_SPI_MAX], rx[AS9888_SIM_SPI_MAX];
+	struct spi_transfer *t;
+	unsigned int total = 0, at;
+	unsigned int fire;
+	unsigned long flags;
+	int ret = 0;
+	u64 now;
+
+	list_for_each_entry(t, &msg->transfers, transfer_list) {
+		if (t->len > AS9888_SIM_SPI_MAX - total) {
+			ret = -EMSGSIZE;
+			goto out;
+		}
+		if (t->tx_buf)
+			memcpy(tx + total, t->tx_buf, t->len);
+		else
+			memset(tx + total, 0, t->len);
+		total += t->len;
+	}
+	memset(rx, 0xff, total);
+
+	spin_lock_irqsave(&s->lock, flags);
+	s->xfers++;
+	now = ktime_get_ns();
+	as9888_model_advance(&s->model, now);
+	fire = as9888_sim_edges(s, now);
+	if (total) {
+		/* bit 7: read; bits 6:0: register; the chip drives SO from byte 1 */
+		if (tx[0] & 0x80)
+			as9888_model_read(&s->model, now, tx[0] & 0x7f, rx + 1,
+					  total - 1);
+		else
+			as9888_model_write(&s->model, now, tx[0] & 0x7f,
+					   tx + 1, total - 1);
+		s->model_xfers++;
+	}
+	fire |= as9888_sim_edges(s, ktime_get_ns());
+	as9888_sim_arm(s);
+	spin_unlock_irqrestore(&s->lock, flags);
+	as9888_sim_fire(s, fire);
+
+	at = 0;
+	list_for_each_entry(t, &msg->transfers, transfer_list) {
+		if (t->rx_buf)
+			memcpy(t->rx_buf, rx + at, t->len);
+		at += t->len;
+	}
+	msg->actual_length = total;
+out:
+	msg->status = ret;
+	spi_finalize_current_message(ctlr);
+	return ret;
+}
+
+/* --- GPIO ----------------------------------------------------------------- */
+
+static int as9888_sim_gpio_get(struct gpio_chip *gc, unsigned int offset)
+{
+	struct as9888_sim *s = gpiochip_get_data(gc);
+	unsigned int fire = 0;
+	unsigned long flags;
+	int val;
+	u64 now;
+
+	spin_lock_irqsave(&s->lock, flags);
+	now = ktime_get_ns();
+	if (offset == AS9888_SIM_RSTN) {
+		val = s->rstn;
+	} else {
+		fire = as9888_sim_edges(s, now);
+		val = s->pin[offset - AS9888_SIM_INT1];
+		as9888_sim_arm(s);
+	}
+	spin_unlock_irqrestore(&s->lock, flags);
+	as9888_sim_fire(s, fire);
+	return val;
+}
+
+static void as9888_sim_rstn(struct as9888_sim *s, int value)
+{
+	unsigned int fire;
+	unsigned long flags;
+	u64 now;
+
+	spin_lock_irqsave(&s->lock, flags);
+	now = ktime_get_ns();
+	as9888_model_advance(&s->model, now);
+	fire = as9888_sim_edges(s, now);
+	s->rstn = !!value;
+	as9888_model_set_rstn(&s->model, now, s->rstn);
+	fire |= as9888_sim_edges(s, now);
+	as9888_sim_arm(s);
+	spin_unlock_irqrestore(&s->lock, flags);
+	as9888_sim_fire(s, fire);
+}
+
+#if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 17, 0)
+static int as9888_sim_gpio_set(struct gpio_chip *gc, unsigned int offset,
+			       int value)
+{
+	if (offset == AS9888_SIM_RSTN)
+		as9888_sim_rstn(gpiochip_get_data(gc), value);
+	return 0;
+}
+#else
+static void as9888_sim_gpio_set(struct gpio_chip *gc, unsigned int offset,
+				int value)
+{
+	if (offset == AS9888_SIM_RSTN)
+		as9888_sim_rstn(gpiochip_get_data(gc), value);
+}
+#endif
+
+static int as9888_sim_gpio_get_direction(struct gpio_chip *gc,
+					 unsigned int offset)
+{
+	return offset == AS9888_SIM_RSTN ? GPIO_LINE_DIRECTION_OUT :
+					   GPIO_LINE_DIRECTION_IN;
+}
+
+static int as9888_sim_gpio_direction_input(struct gpio_chip *gc,
+					   unsigned int offset)
+{
+	/* RSTN stays an output of the board: nothing to read back there. */
+	return offset == AS9888_SIM_RSTN ? -EPERM : 0;
+}
+
+static int as9888_sim_gpio_direction_output(struct gpio_chip *gc,
+					    unsigned int offset, int value)
+{
+	if (offset != AS9888_SIM_RSTN)
+		return -EPERM;	/* INT1/INT2 are driven by the chip */
+	as9888_sim_rstn(gpiochip_get_data(gc), value);
+	return 0;
+}
+
+static int as9888_sim_gpio_to_irq(struct gpio_chip *gc, unsigned int offset)
+{
+	struct as9888_sim *s = gpiochip_get_data(gc);
+
+	if (offset == AS9888_SIM_RSTN)
+		return -ENXIO;
+	return irq_create_mapping(s->domain, offset) ?: -ENXIO;
+}
+
+/* --- device --------------------------------------------------------------- */
+
+/*
+ * The device gets the software node as its (unmanaged) firmware node, not
+ * through board_info.swnode: a managed node is put once more by every
+ * child device that inherits it (the IIO core gives the IIO device its
+ * parent's fwnode), see software_node_notify_remove(), and is freed while
+ * still in use (KASAN use-after-free on 6.1 and 7.2 at the first unbind).
+ */
+static int as9888_sim_add_client(struct as9888_sim *s)
+{
+	struct fwnode_handle *fwnode = software_node_fwnode(&as9888_sim_dev_node);
+	struct i2c_board_info info = {
+		I2C_BOARD_INFO("as9888", AS9888_SIM_ADDR),
+		.fwnode = fwnode,
+	};
+	struct i2c_client *client;
+	struct spi_device *sdev;
+	int irq, ret;
+
+	if (s->client || s->spi)
+		return 0;
+	irq = irq_create_mapping(s->domain, AS9888_SIM_INT1);
+	if (!irq)
+		return -ENXIO;
+	irq_set_irq_type(irq, IRQ_TYPE_EDGE_RISING);
+	if (spi) {
+		sdev = spi_alloc_device(s->ctlr);
+		if (!sdev)
+			return -ENOMEM;
+		strscpy(sdev->modalias, "as9888", sizeof(sdev->modalias));
+		sdev->max_speed_hz = 5000000;
+		sdev->mode = SPI_MODE_3;
+		sdev->irq = irq;
+		device_set_node(&sdev->dev, fwnode);
+		ret = spi_add_device(sdev);
+		if (ret) {
+			spi_dev_put(sdev);
+			return ret;
+		}
+		s->spi = sdev;
+		return 0;
+	}
+	info.irq = irq;
+	client = i2c_new_client_device(&s->adap, &info);
+	if (IS_ERR(client))
+		return PTR_ERR(client);
+	s->client = client;
+	return 0;
+}
+
+/*
+ * i2c_unregister_device() and spi_unregister_device() call
+ * device_remove_software_node(), which treats a primary software node as
+ * owned by the device: it drops a reference the device never took and
+ * leaves the node attached, so device_del() drops one more (KASAN
+ * use-after-free). Our node is the module's: unregister the device only.
+ * Neither bus does anything else for a device without OF/ACPI node, and
+ * the SPI controller has no cleanup callback.
+ */
+static void as9888_sim_del_client(struct as9888_sim *s)
+{
+	if (s->spi) {
+		device_unregister(&s->spi->dev);
+		s->spi = NULL;
+	}
+	if (s->client) {
+		device_unregister(&s->client->dev);
+		s->client = NULL;
+	}
+}
+
+static const char *as9888_sim_dev_name(struct as9888_sim *s, char *buf,
+				       size_t len)
+{
+	if (spi)
+		snprintf(buf, len, "spi%d.0", s->ctlr->bus_num);
+	else
+		snprintf(buf, len, "%d-%04x", s->adap.nr, AS9888_SIM_ADDR);
+	return buf;
+}
+
+/* --- debugfs -------------------------------------------------------------- */
+
+static ssize_t as9888_sim_unit_write(struct file *file, const char __user *ubuf,
+				     size_t count, loff_t *ppos)
+{
+	struct as9888_sim *s = file->private_data;
+	struct as9888_unit_error err = { };
+	struct as9888_unit unit;
+	char *text;
+	int ret;
+
+	if (*ppos || count > AS9888_SIM_UNIT_MAX)
+		return -EINVAL;
+	text = memdup_user_nul(ubuf, count);
+	if (IS_ERR(text))
+		return PTR_ERR(text);
+	ret = as9888_unit_parse(text, count, &unit, &err);
+	if (ret) {
+		pr_warn("as9888_sim: unit description line %u: %s\n",
+			err.line, err.msg);
+		kfree(text);
+		return ret;
+	}
+
+	mutex_lock(&s->cfg_lock);
+	as9888_sim_del_client(s);
+	s->unit = unit;
+	kfree(s->unit_text);
+	s->unit_text = text;
+	as9888_sim_power_on(s);
+	ret = as9888_sim_add_client(s);
+	mutex_unlock(&s->cfg_lock);
+	return ret ?: count;
+}
+
+static ssize_t as9888_sim_unit_read(struct file *file, char __user *ubuf,
+				    size_t count, loff_t *ppos)
+{
+	struct as9888_sim *s = file->private_data;
+	ssize_t ret;
+
+	mutex_lock(&s->cfg_lock);
+	ret = simple_read_from_buffer(ubuf, count, ppos, s->unit_text,
+				      strlen(s->unit_text));
+	mutex_unlock(&s->cfg_lock);
+	return ret;
+}
+
+static const struct file_operations as9888_sim_unit_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.read = as9888_sim_unit_read,
+	.write = as9888_sim_unit_write,
+	.llseek = default_llseek,
+};
+
+static ssize_t as9888_sim_present_write(struct file *file,
+					const char __user *ubuf,
+					size_t count, loff_t *ppos)
+{
+	struct as9888_sim *s = file->private_data;
+	bool on;
+	int ret;
+
+	ret = kstrtobool_from_user(ubuf, count, &on);
+	if (ret)
+		return ret;
+	mutex_lock(&s->cfg_lock);
+	if (!on) {
+		as9888_sim_del_client(s);
+	} else if (!s->client) {
+		as9888_sim_power_on(s);
+		ret = as9888_sim_add_client(s);
+	}
+	mutex_unlock(&s->cfg_lock);
+	return ret ?: count;
+}
+
+static ssize_t as9888_sim_present_read(struct file *file, char __user *ubuf,
+				       size_t count, loff_t *ppos)
+{
+	struct as9888_sim *s = file->private_data;
+	char buf[4];
+	int len;
+
+	mutex_lock(&s->cfg_lock);
+	len = scnprintf(buf, sizeof(buf), "%d\n", s->client || s->spi);
+	mutex_unlock(&s->cfg_lock);
+	return simple_read_from_buffer(ubuf, count, ppos, buf, len);
+}
+
+static const struct file_operations as9888_sim_present_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.read = as9888_sim_present_read,
+	.write = as9888_sim_present_write,
+	.llseek = default_llseek,
+};
+
+static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
+{
+	struct as9888_sim *s = sf->private;
+	struct as9888_model_stats st;
+	u64 xfers, msgs, mx, mn, irqs;
+	unsigned long flags;
+
+	spin_lock_irqsave(&s->lock, flags);
+	st = *as9888_model_stats(&s->model);
+	xfers = s->xfers;
+	msgs = s->msgs;
+	mx = s->model_xfers;
+	mn = s->model_naks;
+	irqs = s->irqs;
+	spin_unlock_irqrestore(&s->lock, flags);
+
+	seq_printf(sf, "bus_calls %llu\n", xfers);
+	seq_printf(sf, "i2c_msgs %llu\n", msgs);
+	seq_printf(sf, "bus_transfers %llu\n", mx);
+	seq_printf(sf, "bus_naks %llu\n", mn);
+	seq_printf(sf, "irqs %llu\n", irqs);
+	seq_printf(sf, "chip_transfers %llu\n", st.transfers);
+	seq_printf(sf, "chip_reads %llu\n", st.reads);
+	seq_printf(sf, "chip_writes %llu\n", st.writes);
+	seq_printf(sf, "chip_naks %llu\n", st.naks);
+	seq_printf(sf, "chip_bytes_read %llu\n", st.bytes_read);
+	seq_printf(sf, "chip_bytes_written %llu\n", st.bytes_written);
+	seq_printf(sf, "chip_measurements %llu\n", st.measurements);
+	seq_printf(sf, "chip_aborted %llu\n", st.aborted);
+	seq_printf(sf, "chip_resets %llu\n", st.resets);
+	return 0;
+}
+
+static int as9888_sim_stats_open(struct inode *inode, struct file *file)
+{
+	return single_open(file, as9888_sim_stats_show, inode->i_private);
+}
+
+static ssize_t as9888_sim_stats_write(struct file *file,
+				      const char __user *ubuf, size_t count,
+				      loff_t *ppos)
+{
+	struct as9888_sim *s = ((struct seq_file *)file->private_data)->private;
+	unsigned long flags;
+
+	spin_lock_irqsave(&s->lock, flags);
+	s->xfers = 0;
+	s->msgs = 0;
+	s->model_xfers = 0;
+	s->model_naks = 0;
+	s->irqs = 0;
+	spin_unlock_irqrestore(&s->lock, flags);
+	return count;
+}
+
+static const struct file_operations as9888_sim_stats_fops = {
+	.owner = THIS_MODULE,
+	.open = as9888_sim_stats_open,
+	.read = seq_read,
+	.write = as9888_sim_stats_write,
+	.llseek = seq_lseek,
+	.release = single_release,
+};
+
+static int as9888_sim_bus_show(struct seq_file *sf, void *unused)
+{
+	struct as9888_sim *s = sf->private;
+
+	char name[32];
+
+	seq_printf(sf, "%s %s\n", spi ? "spi" : "i2c",
+		   as9888_sim_dev_name(s, name, sizeof(name)));
+	return 0;
+}
+DEFINE_SHOW_ATTRIBUTE(as9888_sim_bus);
+
+/* --- module --------------------------------------------------------------- */
+
+static void as9888_sim_dispose_irqs(struct as9888_sim *s)
+{
+	int i;
+
+	for (i = 0; i < AS9888_SIM_NLINES; i++) {
+		unsigned int irq = irq_find_mapping(s->domain, i);
+
+		if (irq)
+			irq_dispose_mapping(irq);
+	}
+}
+
+static int __init as9888_sim_init(void)
+{
+	struct as9888_sim *s;
+	struct gpio_chip *gc;
+	char name[32];
+	int ret;
+
+	s = kzalloc(sizeof(*s), GFP_KERNEL);
+	if (!s)
+		return -ENOMEM;
+	spin_lock_init(&s->lock);
+	mutex_init(&s->cfg_lock);
+#if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 13, 0)
+	hrtimer_setup(&s->timer, as9888_sim_timer_fn, CLOCK_MONOTONIC,
+		      HRTIMER_MODE_ABS);
+#else
+	hrtimer_init(&s->timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS);
+	s->timer.function = as9888_sim_timer_fn;
+#endif
+	as9888_unit_default(&s->unit);
+	s->unit_text = kstrdup("# default unit\n", GFP_KERNEL);
+	if (!s->unit_text) {
+		ret = -ENOMEM;
+		goto err_free;
+	}
+	s->rstn = true;
+
+	/*
+	 * Like board code that describes all its regulators: supplies no
+	 * one describes (the chip's vdd and vid) get the always-on dummy.
+	 */
+	regulator_has_full_constraints();
+
+	ret = software_node_register(&as9888_sim_gpio_node);
+	if (ret)
+		goto err_free;
+	ret = software_node_register(&as9888_sim_dev_node);
+	if (ret) {
+		software_node_unregister(&as9888_sim_gpio_node);
+		goto err_free;
+	}
+
+	s->pdev = platform_device_register_simple("as9888-sim", -1, NULL, 0);
+	if (IS_ERR(s->pdev)) {
+		ret = PTR_ERR(s->pdev);
+		goto err_node;
+	}
+
+	s->domain = irq_domain_create_sim(software_node_fwnode(&as9888_sim_gpio_node),
+					  AS9888_SIM_NLINES);
+	if (IS_ERR(s->domain)) {
+		ret = PTR_ERR(s->domain);
+		goto err_pdev;
+	}
+
+	gc = &s->gc;
+	gc->label = "as9888-sim-gpio";
+	gc->parent = &s->pdev->dev;
+	gc->fwnode = software_node_fwnode(&as9888_sim_gpio_node);
+	gc->owner = THIS_MODULE;
+	gc->base = -1;
+	gc->ngpio = AS9888_SIM_NLINES;
+	gc->names = as9888_sim_line_names;
+	gc->get = as9888_sim_gpio_get;
+	gc->set = as9888_sim_gpio_set;
+	gc->get_direction = as9888_sim_gpio_get_direction;
+	gc->direction_input = as9888_sim_gpio_direction_input;
+	gc->direction_output = as9888_sim_gpio_direction_output;
+	gc->to_irq = as9888_sim_gpio_to_irq;
+	gc->can_sleep = false;
+	ret = gpiochip_add_data(gc, s);
+	if (ret)
+		goto err_domain;
+
+	s->adap.owner = THIS_MODULE;
+	s->adap.algo = &as9888_sim_algo;
+	s->adap.dev.parent = &s->pdev->dev;
+	s->adap.nr = -1;
+	strscpy(s->adap.name, "as9888-sim-i2c", sizeof(s->adap.name));
+	i2c_set_adapdata(&s->adap, s);
+	ret = i2c_add_adapter(&s->adap);
+	if (ret)
+		goto err_gpio;
+
+	s->ctlr = spi_alloc_host(&s->pdev->dev, 0);
+	if (!s->ctlr) {
+		ret = -ENOMEM;
+		goto err_i2c;
+	}
+	spi_controller_set_devdata(s->ctlr, s);
+	s->ctlr->bus_num = -1;
+	s->ctlr->num_chipselect = 1;
+	s->ctlr->mode_bits = SPI_CPOL | SPI_CPHA;
+	s->ctlr->bits_per_word_mask = SPI_BPW_MASK(8);
+	s->ctlr->max_speed_hz = 10000000;
+	s->ctlr->transfer_one_message = as9888_sim_spi_transfer;
+	ret = spi_register_controller(s->ctlr);
+	if (ret) {
+		spi_controller_put(s->ctlr);
+		goto err_i2c;
+	}
+
+#ifndef AS9888_SIM_SWNODE_GPIO
+	as9888_sim_dev_name(s, as9888_sim_dev_id, sizeof(as9888_sim_dev_id));
+	as9888_sim_lookup.dev_id = as9888_sim_dev_id;
+	gpiod_add_lookup_table(&as9888_sim_lookup);
+#endif
+
+	s->dir = debugfs_create_dir("as9888_sim", NULL);
+	debugfs_create_file("unit", 0600, s->dir, s, &as9888_sim_unit_fops);
+	debugfs_create_file("present", 0600, s->dir, s,
+			    &as9888_sim_present_fops);
+	debugfs_create_file("stats", 0600, s->dir, s, &as9888_sim_stats_fops);
+	debugfs_create_file("bus", 0400, s->dir, s, &as9888_sim_bus_fops);
+
+	sim = s;
+	mutex_lock(&s->cfg_lock);
+	as9888_sim_power_on(s);
+	ret = as9888_sim_add_client(s);
+	mutex_unlock(&s->cfg_lock);
+	if (ret)
+		goto err_debugfs;
+	pr_info("as9888_sim: chip at %s, GPIO %s\n",
+		as9888_sim_dev_name(s, name, sizeof(name)), gc->label);
+	return 0;
+
+err_debugfs:
+	debugfs_remove_recursive(s->dir);
+#ifndef AS9888_SIM_SWNODE_GPIO
+	gpiod_remove_lookup_table(&as9888_sim_lookup);
+#endif
+	spi_unregister_controller(s->ctlr);
+err_i2c:
+	i2c_del_adapter(&s->adap);
+err_gpio:
+	gpiochip_remove(gc);
+err_domain:
+	hrtimer_cancel(&s->timer);
+	as9888_sim_dispose_irqs(s);
+	irq_domain_remove_sim(s->domain);
+err_pdev:
+	platform_device_unregister(s->pdev);
+err_node:
+	software_node_unregister(&as9888_sim_dev_node);
+	software_node_unregister(&as9888_sim_gpio_node);
+err_free:
+	hrtimer_cancel(&s->timer);
+	kfree(s->unit_text);
+	kfree(s);
+	sim = NULL;
+	return ret;
+}
+module_init(as9888_sim_init);
+
+static void __exit as9888_sim_exit(void)
+{
+	struct as9888_sim *s = sim;
+
+	debugfs_remove_recursive(s->dir);
+	mutex_lock(&s->cfg_lock);
+	as9888_sim_del_client(s);
+	mutex_unlock(&s->cfg_lock);
+#ifndef AS9888_SIM_SWNODE_GPIO
+	gpiod_remove_lookup_table(&as9888_sim_lookup);
+#endif
+	spi_unregister_controller(s->ctlr);
+	i2c_del_adapter(&s->adap);
+	gpiochip_remove(&s->gc);
+	hrtimer_cancel(&s->timer);
+	as9888_sim_dispose_irqs(s);
+	irq_domain_remove_sim(s->domain);
+	platform_device_unregister(s->pdev);
+	software_node_unregister(&as9888_sim_dev_node);
+	software_node_unregister(&as9888_sim_gpio_node);
+	kfree(s->unit_text);
+	kfree(s);
+}
+module_exit(as9888_sim_exit);
+
+MODULE_DESCRIPTION("AS9888 test adapter: chip model on a simulated I2C bus and GPIO chip");
+MODULE_LICENSE("GPL");

@@ -1,0 +1,26 @@
+# SPDX-License-Identifier: GPL-2.0
+# Real clients written by others: libgpiod's tools, the kernel's tools/iio.
+set_unit "temperature = 25" "noise = 0"
+wait_dev 5
+D=$(gpiodetect 2>&1)
+diag "gpiodetect: $(echo "$D" | grep as9888)"
+check "gpiodetect: as9888-sim-gpio with 3 lines" \
+	sh -c "echo '$D' | grep -q 'as9888-sim-gpio.*(3 lines)'"
+CHIP=$(echo "$D" | grep as9888-sim-gpio | cut -d' ' -f1)
+I=$(gpioinfo "$CHIP" 2>&1)
+echo "$I" | sed 's/^/# /'
+check "gpioinfo: line 0 AS9888_RSTN, output, used by reset, active-low" \
+	sh -c "echo '$I' | grep 'line *0:' | grep 'AS9888_RSTN' | grep '\"reset\"' | grep output | grep -q active-low"
+check "gpioinfo: line 1 AS9888_INT1, input" \
+	sh -c "echo '$I' | grep 'line *1:' | grep 'AS9888_INT1' | grep -q input"
+check "gpioinfo: line 2 AS9888_INT2, input, unused" \
+	sh -c "echo '$I' | grep 'line *2:' | grep 'AS9888_INT2' | grep -q unused"
+L=$(lsiio 2>&1)
+echo "$L" | sed 's/^/# /'
+check "lsiio: the as9888 device" sh -c "echo '$L' | grep -q 'Device [0-9]*: as9888\$'"
+check "lsiio: its data-ready trigger" sh -c "echo '$L' | grep -q 'Trigger [0-9]*: as9888-dev'"
+T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
+G=$(timeout 20 iio_generic_buffer -n as9888 -t "$T" -c 5 -a 2>&1)
+echo "$G" | tail -n 6 | sed 's/^/# /'
+check "iio_generic_buffer: 5 scans with the data-ready trigger" \
+	sh -c "test \$(echo '$G' | grep -c '^[-0-9. ]*[0-9] *\$') -ge 5"

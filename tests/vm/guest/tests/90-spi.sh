@@ -1,0 +1,37 @@
+# SPDX-License-Identifier: GPL-2.0
+# The same chip on the adapter's SPI controller, through as9888_spi.
+rmmod as9888_sim
+check "no IIO device with the adapter gone" sh -c '! iio_dev >/dev/null'
+check "as9888_spi loads" insmod $MODDIR/as9888_spi.ko
+check "adapter loads with spi=1" insmod $MODDIR/as9888_sim.ko spi=1
+check "SPI: as9888 IIO device appears" wait_dev 5
+C=$(client)
+check "SPI: $C bound to as9888_spi" test -e /sys/bus/spi/drivers/as9888_spi/$C
+set_unit "temperature = 25" "offset = 40 -25 60" "noise = 0"
+wait_dev 5
+eq "SPI: accel x raw = offset" "$(cat $DEV/in_accel_x_raw)" 40
+near "SPI: accel z raw = St(25) + offset" "$(cat $DEV/in_accel_z_raw)" 318 1
+echo 1 > $DEV/selftest 2>/dev/null
+r=$(cat $DEV/selftest)
+eq "SPI: selftest passes" "${r%% *}" pass
+T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
+if capture "$T" 2 /tmp/buf3; then
+	S=$(samples /tmp/buf3)
+	M=$((CAP_M1 - CAP_M0))
+	check "SPI data-ready trigger: at least 20 samples ($S)" test "$S" -ge 20
+	check "SPI data-ready trigger: timestamps strictly increasing" monotonic /tmp/buf3
+	if [ $M -gt 0 ]; then
+		TPS=$(echo "$((CAP_T1 - CAP_T0)) $M" | awk '{ printf "%.2f", $1 / $2 }')
+		diag "AS9888-METRIC spi_transfers_per_sample=$TPS spi_rate_hz=$(echo "$S" | awk '{ printf "%.1f", $1 / 2 }')"
+	fi
+else
+	nok "SPI: buffer enable with the data-ready trigger"
+fi
+set_unit "fault = wia"
+sleep 0.5
+check "SPI: wrong WIA fails probe" sh -c '! iio_dev >/dev/null'
+rmmod as9888_sim
+check "SPI: adapter unloads" sh -c '! grep -q "^as9888_sim " /proc/modules'
+rmmod as9888_spi
+insmod $MODDIR/as9888_sim.ko
+check "back on I2C" wait_dev 5
