@@ -94,7 +94,7 @@ static char root[64], devdir[256];
 
 static void put(const char *dir, const char *name, const void *data, size_t len)
 {
-	char path[512];
+	char path[1024];
 	int fd;
 
 	snprintf(path, sizeof(path), "%s/%s", dir, name);
@@ -106,7 +106,7 @@ static void put(const char *dir, const char *name, const void *data, size_t len)
 
 static void get(const char *dir, const char *name, char *buf, size_t size)
 {
-	char path[512];
+	char path[1024];
 	ssize_t n;
 	int fd;
 
@@ -122,7 +122,7 @@ static void get(const char *dir, const char *name, char *buf, size_t size)
 /* $root/devices/i2c/1-000c/{iio:device0,as9888-eeprom0}, bus/iio/devices/iio:device0 -> */
 static int make_tree(void **state)
 {
-	char path[512];
+	char path[1024];
 
 	snprintf(root, sizeof(root), "/tmp/as9888-sysfs-XXXXXX");
 	assert_non_null(mkdtemp(root));
