@@ -97,7 +97,7 @@ static void put(const char *dir, const char *name, const void *data, size_t len)
 	char path[1024];
 	int fd;
 
-	snprintf(path, sizeof(path), "%s/%s", dir, name);
+	assert_true(snprintf(path, sizeof(path), "%s/%s", dir, name) < (int)sizeof(path));
 	fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
 	assert_true(fd >= 0);
 	assert_int_equal(write(fd, data, len), (ssize_t)len);
@@ -110,7 +110,7 @@ static void get(const char *dir, const char *name, char *buf, size_t size)
 	ssize_t n;
 	int fd;
 
-	snprintf(path, sizeof(path), "%s/%s", dir, name);
+	assert_true(snprintf(path, sizeof(path), "%s/%s", dir, name) < (int)sizeof(path));
 	fd = open(path, O_RDONLY);
 	assert_true(fd >= 0);
 	n = read(fd, buf, size - 1);
