@@ -15,7 +15,8 @@
 # "<k>: N passed, N failed" per kernel; exit status 0 only when all pass.
 #
 # Everything goes to $AS9888_CACHE/vm/ (logs: $AS9888_CACHE/logs/vm-run-<k>.log).
-# Environment: AS9888_CACHE, AS9888_JOBS, AS9888_VM_TIMEOUT (s, default 600).
+# Environment: AS9888_CACHE, AS9888_JOBS, AS9888_VM_TIMEOUT (s, default 600),
+# AS9888_VM_ONLY (test files to run, e.g. "10-probe 90-spi"; default all).
 set -euo pipefail
 
 # shellcheck source-path=SCRIPTDIR source=kernel-common.sh
@@ -95,6 +96,11 @@ pack_initramfs() {
 	cp "$GUEST/init" "$root/init"
 	cp "$GUEST/lib.sh" "$GUEST/run-all.sh" "$root/tests/"
 	cp -r "$GUEST/tests" "$root/tests/tests"
+	# AS9888_VM_ONLY="10-probe 90-spi": run only these test files
+	: >"$root/tests/only"
+	if [ -n "${AS9888_VM_ONLY:-}" ]; then
+		printf '%s\n' $AS9888_VM_ONLY >"$root/tests/only"
+	fi
 	chmod +x "$root/init" "$root/tests/run-all.sh"
 	(cd "$root" && find . -print0 | cpio --null -o -H newc --quiet | gzip -1) >"$out"
 	INITRD="$out"
@@ -118,6 +124,13 @@ run_one() {
 	pass=$(grep -c '^ok ' "$log" || true)
 	fail=$(grep -c '^not ok ' "$log" || true)
 	grep -E '^(not ok|# )' "$log" | grep -v '^# dmesg' | sed "s/^/[$k] /" || true
+	# the TAP plan must match the results (nothing silently skipped)
+	local plan
+	plan=$(sed -n 's/^1\.\.\([0-9]*\)$/\1/p' "$log" | tail -n1)
+	if [ -z "$plan" ] || [ "$plan" -ne $((pass + fail)) ] || [ "$plan" -eq 0 ]; then
+		fail=$((fail + 1))
+		warn "$k: TAP plan '${plan:-none}' does not match $pass passed + $fail failed"
+	fi
 	if ! grep -q '^AS9888-VM-END' "$log"; then
 		fail=$((fail + 1))
 		warn "$k: no end marker (qemu exit $rc; timeout is $TIMEOUT s): see $log"

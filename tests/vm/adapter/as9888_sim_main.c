@@ -13,7 +13,7 @@
  *    reset input: a consumer drives it), AS9888_INT1 and AS9888_INT2 (the
  *    chip's outputs, with interrupts from the kernel's interrupt
  *    simulator, edge triggered).
- *  - an SPI controller "as9888-sim-spi" (mode 3): a message is one chip
+ *  - with the module parameter spi=1, an SPI controller (mode 3): a message is one chip
  *    select; its first byte is R/W + register, the rest the data. The
  *    model is then in SPI mode (a failed transfer reads 0xff).
  *  - the device "as9888" at 0x0c (or on SPI chip select 0 with the module
@@ -553,7 +553,9 @@ static int as9888_sim_add_client(struct as9888_sim *s)
  * leaves the node attached, so device_del() drops one more (KASAN
  * use-after-free). Our node is the module's: unregister the device only.
  * Neither bus does anything else for a device without OF/ACPI node, and
- * the SPI controller has no cleanup callback.
+ * the SPI controller has no cleanup callback. Since 6.12 or so (7.2 does,
+ * 6.1 does not) i2c_new_client_device() takes a reference on
+ * board_info.fwnode: give it back.
  */
 static void as9888_sim_del_client(struct as9888_sim *s)
 {
@@ -564,13 +566,19 @@ static void as9888_sim_del_client(struct as9888_sim *s)
 	if (s->client) {
 		device_unregister(&s->client->dev);
 		s->client = NULL;
+#if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 12, 0)
+		fwnode_handle_put(software_node_fwnode(&as9888_sim_dev_node));
+#endif
 	}
 }
 
 static const char *as9888_sim_dev_name(struct as9888_sim *s, char *buf,
 				       size_t len)
 {
-	if (spi)
+	/* 7.2 names an SPI device with a software node after the node */
+	if (spi && s->spi)
+		strscpy(buf, dev_name(&s->spi->dev), len);
+	else if (spi)
 		snprintf(buf, len, "spi%d.0", s->ctlr->bus_num);
 	else
 		snprintf(buf, len, "%d-%04x", s->adap.nr, AS9888_SIM_ADDR);
@@ -754,6 +762,28 @@ DEFINE_SHOW_ATTRIBUTE(as9888_sim_bus);
 
 /* --- module --------------------------------------------------------------- */
 
+static int as9888_sim_add_spi(struct as9888_sim *s)
+{
+	int ret;
+
+	s->ctlr = spi_alloc_host(&s->pdev->dev, 0);
+	if (!s->ctlr)
+		return -ENOMEM;
+	spi_controller_set_devdata(s->ctlr, s);
+	s->ctlr->bus_num = -1;
+	s->ctlr->num_chipselect = 1;
+	s->ctlr->mode_bits = SPI_CPOL | SPI_CPHA;
+	s->ctlr->bits_per_word_mask = SPI_BPW_MASK(8);
+	s->ctlr->max_speed_hz = 10000000;
+	s->ctlr->transfer_one_message = as9888_sim_spi_transfer;
+	ret = spi_register_controller(s->ctlr);
+	if (ret) {
+		spi_controller_put(s->ctlr);
+		s->ctlr = NULL;
+	}
+	return ret;
+}
+
 static void as9888_sim_dispose_irqs(struct as9888_sim *s)
 {
 	int i;
@@ -770,6 +800,7 @@ static int __init as9888_sim_init(void)
 {
 	struct as9888_sim *s;
 	struct gpio_chip *gc;
+	const char *step = "allocation";
 	char name[32];
 	int ret;
 
@@ -799,21 +830,25 @@ static int __init as9888_sim_init(void)
 	 */
 	regulator_has_full_constraints();
 
+	step = "GPIO software node";
 	ret = software_node_register(&as9888_sim_gpio_node);
 	if (ret)
 		goto err_free;
+	step = "device software node";
 	ret = software_node_register(&as9888_sim_dev_node);
 	if (ret) {
 		software_node_unregister(&as9888_sim_gpio_node);
 		goto err_free;
 	}
 
+	step = "platform device";
 	s->pdev = platform_device_register_simple("as9888-sim", -1, NULL, 0);
 	if (IS_ERR(s->pdev)) {
 		ret = PTR_ERR(s->pdev);
 		goto err_node;
 	}
 
+	step = "interrupt simulator";
 	s->domain = irq_domain_create_sim(software_node_fwnode(&as9888_sim_gpio_node),
 					  AS9888_SIM_NLINES);
 	if (IS_ERR(s->domain)) {
@@ -836,6 +871,7 @@ static int __init as9888_sim_init(void)
 	gc->direction_output = as9888_sim_gpio_direction_output;
 	gc->to_irq = as9888_sim_gpio_to_irq;
 	gc->can_sleep = false;
+	step = "GPIO chip";
 	ret = gpiochip_add_data(gc, s);
 	if (ret)
 		goto err_domain;
@@ -846,26 +882,17 @@ static int __init as9888_sim_init(void)
 	s->adap.nr = -1;
 	strscpy(s->adap.name, "as9888-sim-i2c", sizeof(s->adap.name));
 	i2c_set_adapdata(&s->adap, s);
+	step = "I2C adapter";
 	ret = i2c_add_adapter(&s->adap);
 	if (ret)
 		goto err_gpio;
 
-	s->ctlr = spi_alloc_host(&s->pdev->dev, 0);
-	if (!s->ctlr) {
-		ret = -ENOMEM;
-		goto err_i2c;
-	}
-	spi_controller_set_devdata(s->ctlr, s);
-	s->ctlr->bus_num = -1;
-	s->ctlr->num_chipselect = 1;
-	s->ctlr->mode_bits = SPI_CPOL | SPI_CPHA;
-	s->ctlr->bits_per_word_mask = SPI_BPW_MASK(8);
-	s->ctlr->max_speed_hz = 10000000;
-	s->ctlr->transfer_one_message = as9888_sim_spi_transfer;
-	ret = spi_register_controller(s->ctlr);
-	if (ret) {
-		spi_controller_put(s->ctlr);
-		goto err_i2c;
+	/* The SPI controller only exists on the SPI board */
+	if (spi) {
+		step = "SPI controller";
+		ret = as9888_sim_add_spi(s);
+		if (ret)
+			goto err_i2c;
 	}
 
 #ifndef AS9888_SIM_SWNODE_GPIO
@@ -884,6 +911,7 @@ static int __init as9888_sim_init(void)
 	sim = s;
 	mutex_lock(&s->cfg_lock);
 	as9888_sim_power_on(s);
+	step = "device";
 	ret = as9888_sim_add_client(s);
 	mutex_unlock(&s->cfg_lock);
 	if (ret)
@@ -897,7 +925,8 @@ err_debugfs:
 #ifndef AS9888_SIM_SWNODE_GPIO
 	gpiod_remove_lookup_table(&as9888_sim_lookup);
 #endif
-	spi_unregister_controller(s->ctlr);
+	if (s->ctlr)
+		spi_unregister_controller(s->ctlr);
 err_i2c:
 	i2c_del_adapter(&s->adap);
 err_gpio:
@@ -916,6 +945,7 @@ err_free:
 	kfree(s->unit_text);
 	kfree(s);
 	sim = NULL;
+	pr_err("as9888_sim: %s: error %d\n", step, ret);
 	return ret;
 }
 module_init(as9888_sim_init);
@@ -931,7 +961,8 @@ static void __exit as9888_sim_exit(void)
 #ifndef AS9888_SIM_SWNODE_GPIO
 	gpiod_remove_lookup_table(&as9888_sim_lookup);
 #endif
-	spi_unregister_controller(s->ctlr);
+	if (s->ctlr)
+		spi_unregister_controller(s->ctlr);
 	i2c_del_adapter(&s->adap);
 	gpiochip_remove(&s->gc);
 	hrtimer_cancel(&s->timer);

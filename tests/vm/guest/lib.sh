@@ -23,6 +23,11 @@ check() {
 	_n="$1"; shift
 	if "$@"; then ok "$_n"; else nok "$_n" "failed: $*"; fi
 }
+# check_not NAME COMMAND...: ok if the command fails (shell functions allowed)
+check_not() {
+	_n="$1"; shift
+	if "$@"; then nok "$_n" "succeeded: $*"; else ok "$_n"; fi
+}
 # eq NAME GOT WANT
 eq() {
 	if [ "$2" = "$3" ]; then ok "$1"; else nok "$1" "got '$2', want '$3'"; fi
@@ -74,6 +79,41 @@ stat_get() { sed -n "s/^$1 //p" $SIM/stats; }
 milli() {
 	echo "$1" | awk '{ printf "%d", ($1 >= 0) ? $1 * 1000 + 0.5 : $1 * 1000 - 0.5 }'
 }
+# Buffered capture with the device's buffer (DEV set by wait_dev):
+# capture TRIGGER SECONDS OUT: accel x/y/z + timestamp, 16 bytes a sample
+capture() {
+	N=${DEV##*iio:device}
+	SE=$DEV/scan_elements
+	[ -d "$SE" ] || SE=$DEV/buffer0
+	for c in in_accel_x in_accel_y in_accel_z in_timestamp; do
+		echo 1 > $SE/${c}_en
+	done
+	echo "$1" > $DEV/trigger/current_trigger
+	echo 1024 > $DEV/buffer/length
+	echo 1 > $DEV/buffer/enable || return 1
+	CAP_M0=$(stat_get chip_measurements); CAP_T0=$(stat_get bus_transfers)
+	sleep "$2"
+	CAP_M1=$(stat_get chip_measurements); CAP_T1=$(stat_get bus_transfers)
+	echo 0 > $DEV/buffer/enable
+	# a disabled, drained buffer blocks a reader: stop it after 5 s
+	timeout 5 cat /dev/iio:device$N > "$3"
+	echo "" > $DEV/trigger/current_trigger
+}
+# samples FILE; monotonic FILE; zvals FILE
+samples() { echo $(($(wc -c < "$1") / 16)); }
+monotonic() {
+	od -A n -t d8 -v "$1" | awk 'NF == 2 { if (n++ && $2 <= last) bad++; last = $2 }
+		END { exit (n < 2 || bad) }'
+}
+# mean timestamp difference in microseconds
+period_us() {
+	od -A n -t d8 -v "$1" | awk 'NF == 2 { if (!n++) first = $2; last = $2 }
+		END { if (n > 1) printf "%d", (last - first) / (n - 1) / 1000 }'
+}
+zbad() {
+	od -A n -t d2 -v "$1" | awk 'NF == 8 { if ($3 < 248 || $3 > 268) bad++ } END { print bad + 0 }'
+}
+
 leak_check() {
 	[ -f /sys/kernel/debug/kmemleak ] || { nok "kmemleak available"; return; }
 	echo scan > /sys/kernel/debug/kmemleak

@@ -3,7 +3,7 @@
 set_unit "fault = wia"
 sleep 0.5
 C=$(client)
-check "wrong WIA: no IIO device" sh -c '! iio_dev >/dev/null'
+check_not "wrong WIA: no IIO device" iio_dev
 check "wrong WIA: client $C exists but is not bound" \
 	sh -c "test -e /sys/bus/i2c/devices/$C && ! test -e /sys/bus/i2c/devices/$C/driver"
 check "wrong WIA: probe error in the log" sh -c "dmesg | grep -qi 'as9888.*\(WIA\|ID\|0x47\)'"
