@@ -103,7 +103,7 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @dir:	debugfs directory
  */
 struct as9888_sim {
-	spinlock_t lock;
+	spinlock_t lock;		/* see @lock above */
 	struct as9888_model model;
 	bool pin[2];
 	bool rstn;
@@ -115,7 +115,7 @@ struct as9888_sim {
 	u64 irqs;
 	struct hrtimer timer;
 
-	struct mutex cfg_lock;
+	struct mutex cfg_lock;		/* see @cfg_lock above */
 	struct as9888_unit unit;
 	char *unit_text;
 
