@@ -9,7 +9,9 @@
 # Kernel: the two kernel trees from Debian's packages (6.1 LTS and the
 # newest, 7.2), the driver built against both with W=1, sparse and
 # checkpatch --strict, the devicetree binding checked with dt-schema, the
-# KUnit suite on both under UML, and the DKMS build on Debian 12's headers.
+# KUnit suite on both under UML, the DKMS build on Debian 12's headers, and
+# the VM bench: debug kernels of both versions in QEMU with the driver bound
+# to the simulated chip of the test adapter, driven by real clients.
 #
 # Userspace: the Meson suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
@@ -87,6 +89,22 @@ kunit_suite() {
 	return $rc
 }
 
+# The VM bench's test counts (per kernel) go into the summary
+vm_bench() {
+	local log=$build/vm.log rc ok fail
+	"$top/scripts/vm-run.sh" all 2>&1 | tee "$log"
+	rc=${PIPESTATUS[0]}
+	ok=$(sed -n 's/^[0-9.]*: \([0-9]*\) passed, \([0-9]*\) failed.*$/\1/p' "$log" |
+		awk '{ s += $1 } END { print s + 0 }')
+	fail=$(sed -n 's/^[0-9.]*: \([0-9]*\) passed, \([0-9]*\) failed.*$/\2/p' "$log" |
+		awk '{ s += $1 } END { print s + 0 }')
+	[ "$ok" -gt 0 ] || return 1
+	passed=$((passed + ok))
+	failed=$((failed + fail + (rc != 0 && fail == 0)))
+	counted=1
+	return $rc
+}
+
 benchmark() {
 	"$top/scripts/bench-factory-test.sh" "$build/release/daemon/as9888-calibd"
 }
@@ -109,6 +127,7 @@ if [ "$what" = all ]; then
 	stage "devicetree binding (dt-schema)" "$top/scripts/dt-check.sh"
 	stage "KUnit on 6.1 and 7.2 (UML)" kunit_suite
 	stage "DKMS build against Debian 12's headers" "$top/scripts/dkms-check.sh"
+	stage "VM bench: driver, adapter and daemon in QEMU on 6.1 and 7.2" vm_bench
 fi
 
 echo
