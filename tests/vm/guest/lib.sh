@@ -91,9 +91,14 @@ capture() {
 	echo "$1" > $DEV/trigger/current_trigger
 	echo 1024 > $DEV/buffer/length
 	echo 1 > $DEV/buffer/enable || return 1
-	CAP_M0=$(stat_get chip_measurements); CAP_T0=$(stat_get bus_transfers)
+	# one read of the counters per snapshot, so that they agree
+	cat $SIM/stats > /tmp/stats0
 	sleep "$2"
-	CAP_M1=$(stat_get chip_measurements); CAP_T1=$(stat_get bus_transfers)
+	cat $SIM/stats > /tmp/stats1
+	CAP_M0=$(sed -n 's/^chip_measurements //p' /tmp/stats0)
+	CAP_T0=$(sed -n 's/^bus_transfers //p' /tmp/stats0)
+	CAP_M1=$(sed -n 's/^chip_measurements //p' /tmp/stats1)
+	CAP_T1=$(sed -n 's/^bus_transfers //p' /tmp/stats1)
 	echo 0 > $DEV/buffer/enable
 	# a disabled, drained buffer blocks a reader: stop it after 5 s
 	timeout 5 cat /dev/iio:device$N > "$3"

@@ -166,6 +166,8 @@ struct as9888_selftest {
  *		before them.
  * @pd_since:	when the chip last entered power-down (t_PD reference)
  * @last_start:	when the last measurement was started
+ * @trig_slot:	when the data-ready trigger's current sample was due; the
+ *		next one is due a period later, so lateness does not add up
  * @trig_resume: @trig_running was set when the system suspended
  * @scan_mask:	channels of the buffer's scan
  * @buf_men:	the buffer's scan includes a magnetometer channel
@@ -198,6 +200,7 @@ struct as9888_data {
 	struct mutex lock;
 	ktime_t pd_since;
 	ktime_t last_start;
+	ktime_t trig_slot;
 	bool trig_resume;
 	unsigned long scan_mask;
 	bool buf_men;
@@ -1459,13 +1462,20 @@ static int as9888_collect_sample(struct as9888_data *data,
  */
 static void as9888_next_sample(struct as9888_data *data)
 {
-	ktime_t next;
+	ktime_t next, now;
+	u64 period;
 	s64 wait_ns;
 	int i, ret = 0;
 
-	scoped_guard(mutex, &data->lock)
-		next = ktime_add_ns(data->last_start,
-				    div_u64(AS9888_NANO, data->samp_freq));
+	scoped_guard(mutex, &data->lock) {
+		period = div_u64(AS9888_NANO, data->samp_freq);
+		next = ktime_add_ns(data->trig_slot, period);
+		now = ktime_get();
+		/* a whole period behind: start a new schedule from now */
+		if (ktime_before(ktime_add_ns(next, period), now))
+			next = now;
+		data->trig_slot = next;
+	}
 
 	wait_ns = ktime_to_ns(ktime_sub(next, ktime_get()));
 	if (wait_ns > 0)
@@ -1532,6 +1542,7 @@ static int as9888_trig_start(struct as9888_data *data)
 	ret = as9888_start(data, AS9888_MS_SINGLE, data->buf_men);
 	if (ret)
 		WRITE_ONCE(data->trig_running, false);
+	data->trig_slot = data->last_start;
 
 	return ret;
 }
