@@ -136,7 +136,7 @@ c0=$(stat); w0=$(switches)
 sleep 3
 c1=$(stat); w1=$(switches)
 rss=$(awk '/^VmRSS/ { print $2 }' "/proc/$pid/status")
-echo "# idle for 3 s: $((c1 - c0)) CPU ticks, $((w1 - w0)) wake-ups, RSS ${rss} kB (ASan build)"
+echo "# idle for 3 s: $((c1 - c0)) CPU ticks, $((w1 - w0)) wake-ups, RSS ${rss} kB"
 check "idle: no CPU time and no wake-ups" test $((c1 - c0)) -eq 0 -a $((w1 - w0)) -eq 0
 
 kill -TERM "$pid"
