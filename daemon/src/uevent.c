@@ -62,10 +62,12 @@ int uevent_parse(const char *buf, size_t len, struct uevent *ev)
 
 bool uevent_is_appearance(const struct uevent *ev)
 {
-	if (!strcmp(ev->subsystem, "iio"))
-		return !strcmp(ev->action, "add") && !strcmp(ev->devtype, "iio_device");
-	/* our driver bound to its bus device (probe after a rebind) */
-	return !strcmp(ev->action, "bind") && !strncmp(ev->driver, "as9888", 6);
+	/*
+	 * Every probe of the driver (boot, module load, rebind) registers the
+	 * IIO device anew; a resume restores the chip in the driver itself
+	 */
+	return !strcmp(ev->subsystem, "iio") && !strcmp(ev->action, "add") &&
+	       !strcmp(ev->devtype, "iio_device");
 }
 
 int uevent_open(void)

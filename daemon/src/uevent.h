@@ -30,10 +30,7 @@ struct uevent {
 /* Parse one kernel netlink uevent ("action@devpath\0KEY=value\0...") */
 int uevent_parse(const char *buf, size_t len, struct uevent *ev);
 
-/*
- * Whether the event can mean a (re)appeared IIO device: an iio device
- * added, or a driver bound to a device on the bus.
- */
+/* Whether the event is an IIO device (re)appearing: an iio_device add */
 bool uevent_is_appearance(const struct uevent *ev);
 
 /* A netlink socket for kernel uevents, non-blocking; -errno on failure */

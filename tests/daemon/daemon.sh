@@ -89,7 +89,9 @@ check "calibbias set from the record's DAC" test "$(cat "$dev/in_accel_x_calibbi
 reset_attrs
 uevent "bind@/devices/i2c/1-000c" "ACTION=bind" "DEVPATH=/devices/i2c/1-000c" \
 	"SUBSYSTEM=i2c" "DRIVER=as9888_i2c"
-check "driver rebound: calibration applied" wait_applied
+uevent "add@/devices/i2c/1-000c/iio:device0" "ACTION=add" \
+	"DEVPATH=/devices/i2c/1-000c/iio:device0" "SUBSYSTEM=iio" "DEVTYPE=iio_device"
+check "driver rebound (bind, then the IIO device's add): calibration applied" wait_applied
 
 reset_attrs
 uevent "add@/devices/i2c/1-0050/iio:device1" "ACTION=add" \
