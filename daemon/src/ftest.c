@@ -485,8 +485,8 @@ static int level_collect_stable(struct ftest_ctx *x, uint32_t n,
 static void level_judge(struct ftest_ctx *x, const struct level_run *r,
 			const char *const steps[])
 {
-	/* steps: ST1, TMPS, EMPT, ST2, max X, min X, fluct X (3 each) */
-	int axis;
+	/* steps: ST1, TMPS, EMPT, ST2, max X Y Z, min X Y Z, fluct X Y Z */
+	int axis, i;
 
 	judge(x, steps[0], "ST1 data ready (every sample)", r->bad_st1 < 0,
 	      "0x01", r->bad_st1 < 0 ? "all 0x01" : "sample %d: 0x%02x",
@@ -518,29 +518,22 @@ static void level_judge(struct ftest_ctx *x, const struct level_run *r,
 	if (x->stop)
 		return;
 
-	for (axis = 0; axis < AS9888_AXES; axis++) {
+	/* 3-14..3-19: the maxima, then the minima, must not saturate */
+	for (i = 0; i < 2 * AS9888_AXES; i++) {
+		const int16_t *v = i < AS9888_AXES ? r->max : r->min;
 		char name[48];
 
-		snprintf(name, sizeof(name), "maximum of %c", axis_name[axis]);
-		if (!judge(x, steps[4 + axis], name,
-			   !as9888_acc_saturated(r->max[axis]),
-			   "-2048 < A < 2047", "%d", r->max[axis]) && x->stop)
+		axis = i % AS9888_AXES;
+		snprintf(name, sizeof(name), "%s of %c",
+			 i < AS9888_AXES ? "maximum" : "minimum", axis_name[axis]);
+		if (!judge(x, steps[4 + i], name, !as9888_acc_saturated(v[axis]),
+			   "-2048 < A < 2047", "%d", v[axis]) && x->stop)
 			return;
 	}
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		char name[48];
-
-		snprintf(name, sizeof(name), "minimum of %c", axis_name[axis]);
-		if (!judge(x, steps[7 + axis], name,
-			   !as9888_acc_saturated(r->min[axis]),
-			   "-2048 < A < 2047", "%d", r->min[axis]) && x->stop)
-			return;
-	}
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		char name[48], limits[24];
-
 		bool ok = as9888_fluctuation_ok(r->min[axis], r->max[axis],
 						x->o->fluctuation);
+		char name[48], limits[24];
 
 		snprintf(name, sizeof(name), "fluctuation of %c", axis_name[axis]);
 		snprintf(limits, sizeof(limits), "max - min <= %u",
