@@ -206,10 +206,9 @@ static const struct judgment_case cases[] = {
 	{ "3-47", "fluctuation of Z", BURST16(AZ, 240, PASS2 + 6, PASS2 + 6) },
 };
 
-static void run_case(const struct judgment_case *c)
+/* Run the factory test on a noiseless unit behind a tamperer with @rule */
+static int run_tampered(const struct tamper_rule *rule, struct ftest_result *res)
 {
-	struct ftest_result res = { 0 };
-	const struct judgment *j;
 	struct as9888_unit unit;
 	struct tamper x = { 0 };
 	struct ftest_opts o;
@@ -221,12 +220,21 @@ static void run_case(const struct judgment_case *c)
 					       sizeof(err)), 0);
 	x.base.ops = &tamper_ops;
 	x.base.name = "tamper";
-	x.rule = &c->rule;
+	x.rule = rule;
 	ftest_opts_default(&o);
-
-	ftest_run(&x.base, &o, &res);
+	memset(res, 0, sizeof(*res));
+	ftest_run(&x.base, &o, res);
 	transport_destroy(&x.base);
 
+	return x.bursts;
+}
+
+static void run_case(const struct judgment_case *c)
+{
+	struct ftest_result res;
+	const struct judgment *j;
+
+	run_tampered(&c->rule, &res);
 	j = report_first_failure(&res.report);
 	if (!j || strcmp(j->step, c->step) ||
 	    (!strstr(j->name, c->name_part) && !strstr(j->measured, c->name_part))) {
@@ -241,27 +249,13 @@ static void run_case(const struct judgment_case *c)
 
 static void untampered_unit_passes(void **state)
 {
-	static const struct judgment_case none = {
-		"", "", { .reg = 0x7f, .value = 0, .nth = 1000 },
-	};
-	struct ftest_result res = { 0 };
-	struct as9888_unit unit;
-	struct tamper x = { 0 };
-	struct ftest_opts o;
-	char err[256];
+	static const struct tamper_rule none = { .reg = 0x7f, .nth = 1000 };
+	struct ftest_result res;
+	int bursts = run_tampered(&none, &res);
 
-	as9888_unit_default(&unit);
-	unit.noise_mlsb = 0;
-	assert_int_equal(backend_sim_open_unit(&unit, true, &x.inner, err,
-					       sizeof(err)), 0);
-	x.base.ops = &tamper_ops;
-	x.rule = &none.rule;
-	ftest_opts_default(&o);
-	ftest_run(&x.base, &o, &res);
-	transport_destroy(&x.base);
 	assert_null(report_first_failure(&res.report));
 	/* the burst numbering the cases rely on */
-	assert_int_equal(x.bursts, PASS2 + 10);
+	assert_int_equal(bursts, PASS2 + 10);
 	ftest_result_free(&res);
 }
 
