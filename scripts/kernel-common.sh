@@ -106,3 +106,16 @@ cache_lock() {
 		flock 8
 	fi
 }
+
+# select_kernels [6.1|7.2|all]: the kernels a script works on, into WANT;
+# a usage message and exit status 2 for anything else
+select_kernels() {
+	case "${1:-all}" in
+	6.1 | 7.2) WANT=("$1") ;;
+	all) WANT=("${AS9888_KERNELS[@]}") ;;
+	*)
+		echo "usage: $0 [6.1|7.2|all]" >&2
+		exit 2
+		;;
+	esac
+}

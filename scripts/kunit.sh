@@ -25,16 +25,7 @@ set -euo pipefail
 # shellcheck source-path=SCRIPTDIR source=kernel-common.sh
 . "$(dirname "$0")/kernel-common.sh"
 
-usage() {
-	echo "usage: $0 [6.1|7.2|all]" >&2
-	exit 2
-}
-
-case "${1:-all}" in
-6.1 | 7.2) WANT=("$1") ;;
-all) WANT=("${AS9888_KERNELS[@]}") ;;
-*) usage ;;
-esac
+select_kernels "$@"
 
 SRC_ROOT="$(cd "${AS9888_SRC:-$AS9888_REPO}" && pwd)"
 DRV="$SRC_ROOT/$AS9888_DRIVER_REL"

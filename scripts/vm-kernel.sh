@@ -24,14 +24,7 @@ set -euo pipefail
 # shellcheck source-path=SCRIPTDIR source=kernel-common.sh
 . "$(dirname "$0")/kernel-common.sh"
 
-case "${1:-all}" in
-6.1 | 7.2) WANT=("$1") ;;
-all) WANT=("${AS9888_KERNELS[@]}") ;;
-*)
-	echo "usage: $0 [6.1|7.2|all]" >&2
-	exit 2
-	;;
-esac
+select_kernels "$@"
 
 VM_DIR="$AS9888_CACHE/vm"
 CFG_DIR="$AS9888_REPO/tests/vm/config"

@@ -22,14 +22,7 @@ set -euo pipefail
 # shellcheck source-path=SCRIPTDIR source=kernel-common.sh
 . "$(dirname "$0")/kernel-common.sh"
 
-case "${1:-all}" in
-6.1 | 7.2) WANT=("$1") ;;
-all) WANT=("${AS9888_KERNELS[@]}") ;;
-*)
-	echo "usage: $0 [6.1|7.2|all]" >&2
-	exit 2
-	;;
-esac
+select_kernels "$@"
 
 VM_DIR="$AS9888_CACHE/vm"
 GUEST="$AS9888_REPO/tests/vm/guest"
@@ -79,7 +72,8 @@ copy_with_libs() {
 }
 
 pack_initramfs() {
-	local k="$1" root="$VM_DIR/initramfs-$k" out="$VM_DIR/initramfs-$k.cpio.gz" a
+	local k="$1"
+	local root="$VM_DIR/initramfs-$k" out="$VM_DIR/initramfs-$k.cpio.gz" a
 	rm -rf "$root"
 	mkdir -p "$root"/{bin,sbin,usr/bin,usr/sbin,proc,sys,dev,tmp,run,var/lib/as9888} \
 		"$root/lib/modules/as9888" "$root/tests"
@@ -111,7 +105,8 @@ SPLAT_RE='BUG:|WARNING:|KASAN|UBSAN|general protection|Oops|Kernel panic|possibl
 RESULTS=()
 FAILED=0
 run_one() {
-	local k="$1" log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail splat
+	local k="$1"
+	local log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail splat
 	pack_initramfs "$k"
 	t=$(now)
 	log "$k: booting $VM_DIR/build-$k/arch/x86/boot/bzImage (log: $log)"
