@@ -196,18 +196,19 @@ int cmd_check(const struct cli_opts *o)
 	ret = record_level_offsets(&rec, &ee, ot_l);
 	for (axis = 0; !ret && axis < AS9888_AXES; axis++) {
 		const struct as9888_axis_trim *trim = &ee.axis[axis];
-		int32_t st, ot;
-		double predicted;
+		int32_t st, ot, predicted;
 
 		ret = as9888_sensitivity_q16(trim, ee.t_rt_mdegc, res.level_t_mdegc, &st);
 		if (!ret)
 			ret = as9888_offset_q16(trim, ot_l[axis], rec.t_level_mdegc,
 						res.level_t_mdegc, &ot);
+		/* Ot = A + St G, so a level reading should be Ot - St G */
+		if (!ret)
+			ret = as9888_offset_level_q16(ot, st, -res.level_g[axis],
+						      &predicted);
 		if (ret)
 			break;
-		/* Ot = A + St G, so a level reading should be Ot - St G */
-		predicted = (ot - (double)st * res.level_g[axis]) / 65536.0;
-		diff[axis] = res.level_mean_q16[axis] / 65536.0 - predicted;
+		diff[axis] = ((int64_t)res.level_mean_q16[axis] - predicted) / 65536.0;
 		deg[axis] = asin(fmin(1.0, fabs(diff[axis]) / (st / 65536.0))) *
 			    180.0 / M_PI;
 		if (fabs(diff[axis]) > worst)
