@@ -118,8 +118,3 @@ int backend_sim_open(const struct backend_sim_opts *opts,
 	return backend_sim_open_unit(&unit, opts->virtual_clock, out, err,
 				     errlen);
 }
-
-struct as9888_sim *backend_sim_get(struct transport *t)
-{
-	return to_sim(t);
-}

@@ -8,7 +8,6 @@
 
 #include "transport.h"
 
-struct as9888_sim;
 
 /**
  * struct backend_sim_opts - how to build the simulated chip
@@ -27,7 +26,5 @@ struct as9888_unit;
 /* The same with a unit already parsed */
 int backend_sim_open_unit(const struct as9888_unit *unit, bool virtual_clock,
 			  struct transport **out, char *err, size_t errlen);
-/* The simulator behind a transport made by backend_sim_open(). */
-struct as9888_sim *backend_sim_get(struct transport *t);
 
 #endif

@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "as9888_regs.h"
 #include "commands.h"
 #include "ftest_print.h"
 #include "iio.h"
@@ -84,57 +83,19 @@ static int restore_iio(const struct cli_opts *o)
 
 int cmd_restore(const struct cli_opts *o)
 {
-	struct ftest_result res = { 0 };
 	struct calib_record rec;
-	struct transport *t;
-	uint8_t back[AS9888_AXES];
-	int ret;
 
 	if (o->backend == CLI_BACKEND_IIO)
 		return restore_iio(o);
-	if (session_load_record(o->record_path, &rec))
+	if (session_load_record(o->record_path, &rec) ||
+	    session_apply_record(o, &rec))
 		return EXIT_FAILURE;
-	ret = session_open_backend(o, &t);
-	if (ret)
-		return EXIT_FAILURE;
-
-	ret = ftest_step1(t, &res, false);
-	if (ret) {
-		const struct judgment *j = report_first_failure(&res.report);
-
-		fprintf(stderr, "as9888-calibd: restore: chip initialisation failed at step %s (%s: %s); nothing applied\n",
-			j ? j->step : "1", j ? j->name : "step 1",
-			j ? j->measured : strerror(-ret));
-		goto out;
-	}
-	if (memcmp(res.ee.raw, rec.eeprom, AS9888_EEPROM_LEN)) {
-		fprintf(stderr, "as9888-calibd: restore: %s belongs to chip %016llx, this chip is %016llx; nothing applied\n",
-			o->record_path,
-			(unsigned long long)record_fingerprint(rec.eeprom),
-			(unsigned long long)record_fingerprint(res.ee.raw));
-		ret = -ENODEV;
-		goto out;
-	}
-
-	ret = transport_write(t, AS9888_REG_AXDA, rec.dac, AS9888_AXES);
-	if (!ret)
-		ret = transport_read(t, AS9888_REG_AXDA, back, AS9888_AXES);
-	if (!ret && memcmp(back, rec.dac, AS9888_AXES))
-		ret = -EIO;
-	if (ret) {
-		fprintf(stderr, "as9888-calibd: restore: writing the offset DAC failed: %s\n",
-			strerror(-ret));
-		goto out;
-	}
 	if (o->verbose)
 		printf("restored DAC 0x%02x 0x%02x 0x%02x on chip %016llx\n",
 		       rec.dac[0], rec.dac[1], rec.dac[2],
 		       (unsigned long long)record_fingerprint(rec.eeprom));
-out:
-	transport_destroy(t);
-	ftest_result_free(&res);
 
-	return ret ? EXIT_FAILURE : EXIT_SUCCESS;
+	return EXIT_SUCCESS;
 }
 
 int cmd_show(const struct cli_opts *o)

@@ -74,32 +74,6 @@ int cmd_recalibrate(const struct cli_opts *o)
 	return ret;
 }
 
-/* Write the DAC of @rec into the chip after checking the chip is its own */
-static int apply_record(const struct cli_opts *o, const struct calib_record *rec)
-{
-	struct ftest_result res = { 0 };
-	struct transport *t;
-	struct ftest_opts f;
-	const struct judgment *j;
-	int ret;
-
-	if (session_open_backend(o, &t))
-		return -ENODEV;
-	ftest_opts_default(&f);
-	f.expect_eeprom = rec->eeprom;
-	f.apply_dac = rec->dac;
-	ret = ftest_step1_opts(t, &f, &res);
-	transport_destroy(t);
-	j = report_first_failure(&res.report);
-	if (ret || j)
-		fprintf(stderr, "as9888-calibd: cannot apply the record: step %s (%s: %s)\n",
-			j ? j->step : "1", j ? j->name : "initialisation",
-			j ? j->measured : strerror(-ret));
-	ftest_result_free(&res);
-
-	return ret ? ret : j ? -EIO : 0;
-}
-
 /*
  * current := previous, previous := current, never losing either: the
  * current record is first parked in <path>.previous.swap, which only a
@@ -151,7 +125,7 @@ int cmd_rollback(const struct cli_opts *o)
 			fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device\n");
 			return EXIT_FAILURE;
 		}
-	} else if (apply_record(o, &before)) {
+	} else if (session_apply_record(o, &before)) {
 		return EXIT_FAILURE;
 	}
 	printf("Rolled back: %s holds the calibration from before the last recalibration\n",

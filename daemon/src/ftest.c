@@ -214,7 +214,7 @@ static int step1_trims(struct ftest_ctx *x)
 	return 0;
 }
 
-int ftest_step1_opts(struct transport *t, const struct ftest_opts *o,
+int ftest_step1(struct transport *t, const struct ftest_opts *o,
 		     struct ftest_result *res)
 {
 	struct ftest_ctx x = { .res = res, .o = o };
@@ -230,16 +230,6 @@ int ftest_step1_opts(struct transport *t, const struct ftest_opts *o,
 		return ret;
 
 	return x.stop ? -EIO : 0;
-}
-
-int ftest_step1(struct transport *t, struct ftest_result *res, bool keep_going)
-{
-	struct ftest_opts o;
-
-	ftest_opts_default(&o);
-	o.keep_going = keep_going;
-
-	return ftest_step1_opts(t, &o, res);
 }
 
 /*

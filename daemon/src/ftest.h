@@ -100,12 +100,11 @@ int ftest_run(struct transport *t, const struct ftest_opts *o,
 void ftest_result_free(struct ftest_result *res);
 
 /*
- * Step 1 only: reset, identify, read the EEPROM, load the trims and check
- * them (used by restore too).
+ * Step 1 only: reset, identify, read the EEPROM (refused when it is not
+ * @o->expect_eeprom), load the trims (@o->apply_dac as the DAC values) and
+ * read them back. Used to apply a record.
  */
-int ftest_step1(struct transport *t, struct ftest_result *res, bool keep_going);
-/* The same with all options (identity check, DAC values to load) */
-int ftest_step1_opts(struct transport *t, const struct ftest_opts *o,
+int ftest_step1(struct transport *t, const struct ftest_opts *o,
 		     struct ftest_result *res);
 
 #endif

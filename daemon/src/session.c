@@ -14,6 +14,7 @@
 #include "atomic_file.h"
 #include "backend_raw.h"
 #include "backend_sim.h"
+#include "ftest.h"
 #include "session.h"
 
 int session_open_backend(const struct cli_opts *o, struct transport **t)
@@ -125,4 +126,41 @@ int session_lock(const char *path)
 	}
 
 	return fd;
+}
+
+/*
+ * Apply @rec to the chip behind the command's backend: step 1 of the
+ * application note with the record's DAC values loaded as trims, refused
+ * before anything is written when the chip's EEPROM is not the record's.
+ * The read-back of step 1 (D10) checks the DAC values too.
+ */
+int session_apply_record(const struct cli_opts *o, const struct calib_record *rec)
+{
+	struct ftest_result res = { 0 };
+	const struct judgment *j;
+	struct transport *t;
+	struct ftest_opts f;
+	int ret;
+
+	if (session_open_backend(o, &t))
+		return -ENODEV;
+	ftest_opts_default(&f);
+	f.expect_eeprom = rec->eeprom;
+	f.apply_dac = rec->dac;
+	ret = ftest_step1(t, &f, &res);
+	transport_destroy(t);
+
+	j = report_first_failure(&res.report);
+	if (ret == -ENODEV && res.have_eeprom)
+		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, this chip is %016llx; nothing applied\n",
+			o->record_path,
+			(unsigned long long)record_fingerprint(rec->eeprom),
+			(unsigned long long)record_fingerprint(res.ee.raw));
+	else if (ret || j)
+		fprintf(stderr, "as9888-calibd: cannot apply the record: step %s (%s: %s); nothing applied\n",
+			j ? j->step : "1", j ? j->name : "initialisation",
+			j ? j->measured : strerror(-ret));
+	ftest_result_free(&res);
+
+	return ret ? ret : j ? -EIO : 0;
 }

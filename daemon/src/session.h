@@ -22,6 +22,9 @@ int session_load_record(const char *path, struct calib_record *rec);
 int session_save_record(const char *path, struct calib_record *rec,
 			bool keep_previous, char *err, size_t errlen);
 
+/* Apply @rec to the chip (identity checked first); 0 or -errno, said on stderr */
+int session_apply_record(const struct cli_opts *o, const struct calib_record *rec);
+
 /* Returns the lock's fd (held until exit), or -errno */
 int session_lock(const char *path);
 
