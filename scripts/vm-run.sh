@@ -31,7 +31,7 @@ mkdir -p "$VM_DIR" "$LOG_DIR"
 T_START=$(now)
 
 ensure_pkgs busybox-static qemu-system-x86 cpio gzip meson ninja-build \
-	pkg-config libgpiod-dev libcmocka-dev gcc gpiod file
+	pkg-config libgpiod-dev libcmocka-dev gcc gpiod file libiio-utils
 
 # as9888-calibd, statically linked (glibc + libgpiod 1.6 static libs)
 build_daemon() {
@@ -83,7 +83,7 @@ pack_initramfs() {
 	done
 	cp "$DAEMON" "$root/bin/as9888-calibd"
 	cp "$TOOLS_IIO/lsiio" "$TOOLS_IIO/iio_generic_buffer" "$root/usr/bin/"
-	for a in gpiodetect gpioinfo gpioget; do
+	for a in gpiodetect gpioinfo gpioget iio_info iio_attr iio_readdev; do
 		copy_with_libs "$root" "/usr/bin/$a"
 	done
 	cp "$VM_DIR/mod-$k/ko/"*.ko "$root/lib/modules/as9888/"
