@@ -378,9 +378,6 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 		return bad(err, errlen, "request needs what to ask: status, check, recalibrate or rollback");
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
-	if (o->backend == CLI_BACKEND_IIO && o->command != CLI_RESTORE &&
-	    o->command != CLI_DAEMON)
-		return bad(err, errlen, "--backend iio is for restore and daemon (the test engine needs register access: use sim or raw)");
 	if (o->backend == CLI_BACKEND_RAW && (o->unit_path || o->virtual_clock))
 		return bad(err, errlen, "--unit and --sim-clock are for --backend sim");
 	if (o->backend == CLI_BACKEND_SIM &&

@@ -14,40 +14,18 @@
 #include "session.h"
 #include "show.h"
 
-/* Step 4-1: store the record crash-safely */
-static bool store_record(const struct cli_opts *o, struct ftest_result *res,
-			 bool keep_previous)
-{
-	char err[SESSION_ERR_LEN];
-	int ret;
-
-	ret = session_save_record(o->record_path, &res->rec, keep_previous, err,
-				  sizeof(err));
-	report_add(&res->report, "4-1", "store calibration record",
-		   ret ? JUDGMENT_FAIL : JUDGMENT_PASS, NULL, "%s",
-		   ret ? err : o->record_path);
-
-	return ret == 0;
-}
-
 int cmd_factory_test(const struct cli_opts *o)
 {
 	struct ftest_result res = { 0 };
-	struct transport *t;
 	bool stored = false;
 	int ret;
 
-	if (session_lock(o->record_path) < 0)
+	if (session_lock(o->record_path) < 0 ||
+	    session_run_test(o, &o->ftest, &res))
 		return EXIT_FAILURE;
-	ret = session_open_backend(o, &t);
-	if (ret)
-		return EXIT_FAILURE;
-
-	ftest_run(t, &o->ftest, &res);
-	transport_destroy(t);
 
 	if (res.have_calibration && !report_first_failure(&res.report))
-		stored = store_record(o, &res, false);
+		stored = session_store_result(o, &res, false);
 
 	if (o->json) {
 		ftest_print_json(stdout, &res, o->record_path, stored);

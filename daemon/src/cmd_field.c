@@ -34,9 +34,7 @@ int cmd_recalibrate(const struct cli_opts *o)
 {
 	struct ftest_result res = { 0 };
 	struct calib_record old;
-	struct transport *t;
 	struct ftest_opts f;
-	char err[SESSION_ERR_LEN];
 	bool stored = false;
 	int ret;
 
@@ -46,20 +44,12 @@ int cmd_recalibrate(const struct cli_opts *o)
 		fprintf(stderr, "as9888-calibd: recalibrate needs the factory record; run factory-test first\n");
 		return EXIT_FAILURE;
 	}
-	if (session_open_backend(o, &t))
-		return EXIT_FAILURE;
 	field_opts(o, &old, &f);
-	ftest_run(t, &f, &res);
-	transport_destroy(t);
+	if (session_run_test(o, &f, &res))
+		return EXIT_FAILURE;
 
-	if (res.have_calibration && !report_first_failure(&res.report)) {
-		ret = session_save_record(o->record_path, &res.rec, true, err,
-					  sizeof(err));
-		report_add(&res.report, "4-1", "store calibration record",
-			   ret ? JUDGMENT_FAIL : JUDGMENT_PASS, NULL, "%s",
-			   ret ? err : o->record_path);
-		stored = !ret;
-	}
+	if (res.have_calibration && !report_first_failure(&res.report))
+		stored = session_store_result(o, &res, true);
 	if (o->json) {
 		ftest_print_json(stdout, &res, o->record_path, stored);
 	} else {
@@ -141,7 +131,6 @@ int cmd_check(const struct cli_opts *o)
 	struct ftest_result res = { 0 };
 	struct as9888_eeprom ee;
 	struct calib_record rec;
-	struct transport *t;
 	struct ftest_opts f;
 	const struct judgment *j;
 	int32_t ot_l[AS9888_AXES];
@@ -150,12 +139,10 @@ int cmd_check(const struct cli_opts *o)
 
 	if (session_load_record(o->record_path, &rec))
 		return EXIT_FAILURE;
-	if (session_open_backend(o, &t))
-		return EXIT_FAILURE;
 	field_opts(o, &rec, &f);
 	f.measure_only = true;
-	ftest_run(t, &f, &res);
-	transport_destroy(t);
+	if (session_run_test(o, &f, &res))
+		return EXIT_FAILURE;
 
 	j = report_first_failure(&res.report);
 	if (j || !res.have_level) {

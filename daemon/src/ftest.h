@@ -100,6 +100,15 @@ int ftest_run(struct transport *t, const struct ftest_opts *o,
 void ftest_result_free(struct ftest_result *res);
 
 /*
+ * The same test through the AS9888 IIO driver bound to the chip, whose
+ * sysfs directory is @dir (iio_find_device()): see ftest_iio.c for how each
+ * step maps onto the driver's interfaces. The device's attributes are left
+ * as they were found.
+ */
+int ftest_run_iio(const char *dir, const struct ftest_opts *o,
+		  struct ftest_result *res);
+
+/*
  * Step 1 only: reset, identify, read the EEPROM (refused when it is not
  * @o->expect_eeprom), load the trims (@o->apply_dac as the DAC values) and
  * read them back. Used to apply a record.

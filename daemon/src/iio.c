@@ -11,18 +11,15 @@
 #include "iio.h"
 #include "session.h"
 
-#define IIO_PREFIX	"iio:device"
-#define ATTR_MAX	128
 
-static const char *sysfs_root(void)
+const char *iio_sysfs_root(void)
 {
 	const char *root = getenv("AS9888_SYSFS");
 
 	return root && *root ? root : "/sys";
 }
 
-/* Read a small sysfs attribute, without its trailing newline */
-static int read_attr(const char *dir, const char *name, char *buf, size_t size)
+int iio_read_attr(const char *dir, const char *name, char *buf, size_t size)
 {
 	char path[IIO_PATH_MAX];
 	ssize_t n;
@@ -43,7 +40,7 @@ static int read_attr(const char *dir, const char *name, char *buf, size_t size)
 	return (int)n;
 }
 
-static int write_attr(const char *dir, const char *name, const char *value)
+int iio_write_attr(const char *dir, const char *name, const char *value)
 {
 	char path[IIO_PATH_MAX];
 	size_t len = strlen(value);
@@ -64,9 +61,9 @@ static int write_attr(const char *dir, const char *name, const char *value)
 
 static bool is_as9888(const char *dir)
 {
-	char name[ATTR_MAX];
+	char name[IIO_ATTR_MAX];
 
-	return read_attr(dir, "name", name, sizeof(name)) > 0 &&
+	return iio_read_attr(dir, "name", name, sizeof(name)) > 0 &&
 	       !strcmp(name, IIO_DEVICE_NAME);
 }
 
@@ -80,7 +77,7 @@ static int scan(const char *dir, char *out, size_t size)
 	if (!d)
 		return -ENOENT;
 	while ((de = readdir(d))) {
-		if (strncmp(de->d_name, IIO_PREFIX, strlen(IIO_PREFIX)))
+		if (strncmp(de->d_name, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX)))
 			continue;
 		snprintf(out, size, "%s/%s", dir, de->d_name);
 		if (is_as9888(out)) {
@@ -99,14 +96,14 @@ int iio_find_device(const char *devpath, char *out, size_t size)
 	const char *base;
 
 	if (!devpath) {
-		snprintf(dir, sizeof(dir), "%s/bus/iio/devices", sysfs_root());
+		snprintf(dir, sizeof(dir), "%s/bus/iio/devices", iio_sysfs_root());
 		return scan(dir, out, size);
 	}
 	if (strstr(devpath, "/.."))
 		return -ENOENT;
-	snprintf(dir, sizeof(dir), "%s%s", sysfs_root(), devpath);
+	snprintf(dir, sizeof(dir), "%s%s", iio_sysfs_root(), devpath);
 	base = strrchr(dir, '/');
-	if (base && !strncmp(base + 1, IIO_PREFIX, strlen(IIO_PREFIX))) {
+	if (base && !strncmp(base + 1, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX))) {
 		if (!is_as9888(dir))
 			return -ENOENT;
 		snprintf(out, size, "%s", dir);
@@ -116,21 +113,17 @@ int iio_find_device(const char *devpath, char *out, size_t size)
 	return scan(dir, out, size);
 }
 
-/*
- * The EEPROM through the driver's NVMEM provider "as9888-eeprom<N>", a
- * sibling of iio:device<N> below the bus device.
- */
-static int read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
+int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 {
 	const char *base = strrchr(dir, '/');
 	char path[IIO_PATH_MAX];
 	ssize_t n;
 	int fd;
 
-	if (!base || strncmp(base + 1, IIO_PREFIX, strlen(IIO_PREFIX)))
+	if (!base || strncmp(base + 1, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX)))
 		return -EINVAL;
 	snprintf(path, sizeof(path), "%s/../%s-eeprom%s/nvmem", dir,
-		 IIO_DEVICE_NAME, base + 1 + strlen(IIO_PREFIX));
+		 IIO_DEVICE_NAME, base + 1 + strlen(IIO_DEVICE_PREFIX));
 	fd = open(path, O_RDONLY | O_CLOEXEC);
 	if (fd < 0)
 		return -errno;
@@ -144,18 +137,13 @@ static int read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 
 int iio_restore(const char *record_path, const char *dir)
 {
-	static const char *const bias[AS9888_AXES] = {
-		"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
-	};
 	uint8_t eeprom[AS9888_EEPROM_LEN];
-	char want[ATTR_MAX], got[ATTR_MAX];
-	struct as9888_eeprom ee;
 	struct calib_record rec;
-	int axis, ret;
+	int ret;
 
 	if (session_load_record(record_path, &rec))
 		return -EINVAL;
-	ret = read_eeprom(dir, eeprom);
+	ret = iio_read_eeprom(dir, eeprom);
 	if (ret) {
 		fprintf(stderr, "as9888-calibd: %s: cannot read the EEPROM: %s\n",
 			dir, strerror(-ret));
@@ -167,14 +155,26 @@ int iio_restore(const char *record_path, const char *dir)
 			dir, (unsigned long long)record_fingerprint(eeprom));
 		return -ENODEV;
 	}
-	as9888_eeprom_decode(rec.eeprom, &ee);
 
+	return iio_apply_record(dir, &rec);
+}
+
+int iio_apply_record(const char *dir, const struct calib_record *rec)
+{
+	static const char *const bias[AS9888_AXES] = {
+		"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
+	};
+	char want[IIO_ATTR_MAX], got[IIO_ATTR_MAX];
+	struct as9888_eeprom ee;
+	int axis, ret;
+
+	as9888_eeprom_decode(rec->eeprom, &ee);
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		snprintf(want, sizeof(want), "%d",
-			 as9888_dac2lin(ee.axis[axis].ga, rec.dac[axis]));
-		ret = write_attr(dir, bias[axis], want);
+			 as9888_dac2lin(ee.axis[axis].ga, rec->dac[axis]));
+		ret = iio_write_attr(dir, bias[axis], want);
 		if (!ret)
-			ret = read_attr(dir, bias[axis], got, sizeof(got)) < 0 ? -EIO :
+			ret = iio_read_attr(dir, bias[axis], got, sizeof(got)) < 0 ? -EIO :
 			      strcmp(want, got) ? -EIO : 0;
 		if (ret) {
 			fprintf(stderr, "as9888-calibd: %s/%s: cannot set %s: %s\n",
@@ -184,12 +184,12 @@ int iio_restore(const char *record_path, const char *dir)
 	}
 
 	snprintf(want, sizeof(want), "%d %d %d %d %d %d %d",
-		 rec.level_mean_q16[0], rec.level_mean_q16[1],
-		 rec.level_mean_q16[2], rec.t_level_mdegc, rec.gravity[0],
-		 rec.gravity[1], rec.gravity[2]);
-	ret = write_attr(dir, "in_accel_calibration", want);
+		 rec->level_mean_q16[0], rec->level_mean_q16[1],
+		 rec->level_mean_q16[2], rec->t_level_mdegc, rec->gravity[0],
+		 rec->gravity[1], rec->gravity[2]);
+	ret = iio_write_attr(dir, "in_accel_calibration", want);
 	if (!ret)
-		ret = read_attr(dir, "in_accel_calibration", got, sizeof(got)) < 0 ?
+		ret = iio_read_attr(dir, "in_accel_calibration", got, sizeof(got)) < 0 ?
 		      -EIO : strcmp(want, got) ? -EIO : 0;
 	if (ret) {
 		fprintf(stderr, "as9888-calibd: %s/in_accel_calibration: cannot set \"%s\": %s\n",

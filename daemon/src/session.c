@@ -15,6 +15,7 @@
 #include "backend_raw.h"
 #include "backend_sim.h"
 #include "ftest.h"
+#include "iio.h"
 #include "session.h"
 
 int session_open_backend(const struct cli_opts *o, struct transport **t)
@@ -28,7 +29,7 @@ int session_open_backend(const struct cli_opts *o, struct transport **t)
 
 	if (o->backend == CLI_BACKEND_IIO) {
 		snprintf(err, sizeof(err),
-			 "the test engine needs register access: --backend sim or raw (the driver-backed engine is not written yet)");
+			 "--backend iio has no register access: use sim or raw");
 		ret = -EOPNOTSUPP;
 	} else if (o->backend == CLI_BACKEND_RAW)
 		ret = backend_raw_open(&o->raw, t, err, sizeof(err));
@@ -163,4 +164,81 @@ int session_apply_record(const struct cli_opts *o, const struct calib_record *re
 	ftest_result_free(&res);
 
 	return ret ? ret : j ? -EIO : 0;
+}
+
+static int find_iio_device(const char *what, char *dir, size_t size)
+{
+	if (iio_find_device(NULL, dir, size)) {
+		fprintf(stderr, "as9888-calibd: %s: no %s IIO device (is the driver bound?)\n",
+			what, IIO_DEVICE_NAME);
+		return -ENODEV;
+	}
+
+	return 0;
+}
+
+/*
+ * Run the test on the command's backend: register access (sim, raw) or the
+ * driver (iio).
+ */
+int session_run_test(const struct cli_opts *o, const struct ftest_opts *f,
+		     struct ftest_result *res)
+{
+	char dir[IIO_PATH_MAX];
+	struct transport *t;
+	int ret;
+
+	if (o->backend == CLI_BACKEND_IIO) {
+		ret = find_iio_device("test", dir, sizeof(dir));
+		if (!ret)
+			ftest_run_iio(dir, f, res);
+		return ret;
+	}
+
+	ret = session_open_backend(o, &t);
+	if (ret)
+		return ret;
+	ftest_run(t, f, res);
+	transport_destroy(t);
+
+	return 0;
+}
+
+/*
+ * A new record in effect: the register engine leaves its DAC values in the
+ * chip, the driver gets the record written into its attributes.
+ */
+int session_activate_record(const struct cli_opts *o,
+			    const struct calib_record *rec)
+{
+	char dir[IIO_PATH_MAX];
+	int ret;
+
+	if (o->backend != CLI_BACKEND_IIO)
+		return 0;
+	ret = find_iio_device("apply", dir, sizeof(dir));
+
+	return ret ? ret : iio_apply_record(dir, rec);
+}
+
+/* Step 4-1: store the record crash-safely, and put it in effect */
+bool session_store_result(const struct cli_opts *o, struct ftest_result *res,
+			  bool keep_previous)
+{
+	char err[SESSION_ERR_LEN];
+	int ret;
+
+	ret = session_save_record(o->record_path, &res->rec, keep_previous, err,
+				  sizeof(err));
+	if (!ret && session_activate_record(o, &res->rec)) {
+		snprintf(err, sizeof(err),
+			 "%s written but not applied to the device",
+			 o->record_path);
+		ret = -EIO;
+	}
+	report_add(&res->report, "4-1", "store calibration record",
+		   ret ? JUDGMENT_FAIL : JUDGMENT_PASS, NULL, "%s",
+		   ret ? err : o->record_path);
+
+	return ret == 0;
 }

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "cli.h"
+#include "ftest.h"
 #include "record.h"
 #include "transport.h"
 
@@ -24,6 +25,25 @@ int session_save_record(const char *path, struct calib_record *rec,
 
 /* Apply @rec to the chip (identity checked first); 0 or -errno, said on stderr */
 int session_apply_record(const struct cli_opts *o, const struct calib_record *rec);
+
+/*
+ * Run the factory test with @f on the command's backend. 0 when it ran
+ * (judgments in @res), -errno when it could not start (said on stderr).
+ */
+int session_run_test(const struct cli_opts *o, const struct ftest_opts *f,
+		     struct ftest_result *res);
+
+/*
+ * Step 4-1: store @res's record crash-safely (keeping the one it replaces
+ * as <path>.previous with @keep_previous) and put it in effect; the
+ * outcome is judged in @res's report. True when both were done.
+ */
+bool session_store_result(const struct cli_opts *o, struct ftest_result *res,
+			  bool keep_previous);
+
+/* Put a newly stored record in effect on the device; 0 or -errno (said) */
+int session_activate_record(const struct cli_opts *o,
+			    const struct calib_record *rec);
 
 /* Returns the lock's fd (held until exit), or -errno */
 int session_lock(const char *path);

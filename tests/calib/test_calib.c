@@ -301,6 +301,16 @@ static void selftest_windows(void **state)
 	assert_false(as9888_selftest_ok(3, 0, 128));
 	/* the weak self-test of a faulty unit (Z about 150) fails */
 	assert_false(as9888_selftest_ok(2, 150, 128));
+	/* the window alone, on adjusted Q8 values: edges included */
+	assert_true(as9888_selftest_window_ok(0, -100 * 256));
+	assert_false(as9888_selftest_window_ok(0, -100 * 256 - 1));
+	assert_true(as9888_selftest_window_ok(1, 100 * 256));
+	assert_false(as9888_selftest_window_ok(1, 100 * 256 + 1));
+	assert_true(as9888_selftest_window_ok(2, 300 * 256));
+	assert_false(as9888_selftest_window_ok(2, 300 * 256 - 1));
+	assert_true(as9888_selftest_window_ok(2, 1000 * 256));
+	assert_false(as9888_selftest_window_ok(2, 1000 * 256 + 1));
+	assert_false(as9888_selftest_window_ok(-1, 0));
 }
 
 static void sensitivity(void **state)

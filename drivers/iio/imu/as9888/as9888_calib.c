@@ -31,7 +31,6 @@
 #define AS9888_ST_RT_MAX		(AS9888_ST_NOMINAL + 15)
 #define AS9888_KSTE_IDX_MAX		7
 #define AS9888_EHC_OFFSET		128
-#define AS9888_Q8_SHIFT			8
 #define AS9888_Q16_SHIFT		16
 /* DAC rounding: (gain + 16) / 2048 * Ot_L with Ot_L in Q16 */
 #define AS9888_DAC_GAIN_OFFSET		16
@@ -157,20 +156,15 @@ bool as9888_mag_overflow(s16 h)
 EXPORT_SYMBOL_NS_GPL(as9888_mag_overflow, AS9888_NS);
 
 /**
- * as9888_selftest_ok() - self-test window of steps 2-17..2-22
+ * as9888_selftest_window_ok() - self-test window of steps 2-17..2-22
  * @axis: 0 (X), 1 (Y) or 2 (Z)
- * @h: raw self-test reading of that axis
- * @ehc: the axis' sensitivity adjustment from the EEPROM
+ * @adj_q8: the adjusted self-test reading of that axis, in 1/256 LSB
  *
- * The window applies to the adjusted value; comparing in Q8 is exact.
+ * Comparing in Q8 is exact.
  */
-bool as9888_selftest_ok(int axis, s16 h, u8 ehc)
+bool as9888_selftest_window_ok(int axis, s32 adj_q8)
 {
-	s32 adj = as9888_mag_adjust_q8(h, ehc);
 	s32 lo, hi;
-
-	if (as9888_mag_overflow(h))
-		return false;
 
 	switch (axis) {
 	case 0:
@@ -186,8 +180,23 @@ bool as9888_selftest_ok(int axis, s16 h, u8 ehc)
 		return false;
 	}
 
-	return adj >= lo * (1 << AS9888_Q8_SHIFT) &&
-	       adj <= hi * (1 << AS9888_Q8_SHIFT);
+	return adj_q8 >= lo * (1 << AS9888_Q8_SHIFT) &&
+	       adj_q8 <= hi * (1 << AS9888_Q8_SHIFT);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_selftest_window_ok, AS9888_NS);
+
+/**
+ * as9888_selftest_ok() - self-test judgment of one axis, steps 2-17..2-22
+ * @axis: 0 (X), 1 (Y) or 2 (Z)
+ * @h: raw self-test reading of that axis
+ * @ehc: the axis' sensitivity adjustment from the EEPROM
+ *
+ * The reading must not overflow, and adjusted it must be in its window.
+ */
+bool as9888_selftest_ok(int axis, s16 h, u8 ehc)
+{
+	return !as9888_mag_overflow(h) &&
+	       as9888_selftest_window_ok(axis, as9888_mag_adjust_q8(h, ehc));
 }
 EXPORT_SYMBOL_NS_GPL(as9888_selftest_ok, AS9888_NS);
 

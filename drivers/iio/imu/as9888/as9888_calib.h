@@ -85,6 +85,10 @@
 #define AS9888_ACC_MIN			(-2048)
 #define AS9888_ACC_MAX			2047
 
+/* Adjusted magnetometer readings are in 1/256 LSB (Q8) */
+#define AS9888_Q8_SHIFT			8
+#define AS9888_Q8_ONE			256
+
 /* Application note, step 2: self-test windows after sensitivity adjustment */
 #define AS9888_SELFTEST_XY_MIN		(-100)
 #define AS9888_SELFTEST_XY_MAX		100
@@ -188,6 +192,7 @@ bool as9888_tmps_valid(u8 tmps);
 /* Magnetometer: H_adj = H * (EHC + 128) / 256, returned in 1/256 LSB */
 s32 as9888_mag_adjust_q8(s16 h, u8 ehc);
 bool as9888_mag_overflow(s16 h);
+bool as9888_selftest_window_ok(int axis, s32 adj_q8);
 bool as9888_selftest_ok(int axis, s16 h, u8 ehc);
 
 /* Accelerometer sensitivity and offset (section 6 of the datasheet) */

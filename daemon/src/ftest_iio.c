@@ -1,0 +1,652 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The factory test's device when the AS9888 IIO driver owns the chip: its
+ * interfaces (Documentation/ABI/testing/sysfs-bus-iio-as9888) stand in for
+ * register access.
+ *
+ *   step 1  the driver identified the chip when it bound (WIA) and loaded
+ *           the trims; the EEPROM comes from its NVMEM provider and the DAC
+ *           values go through in_accel_*_calibbias, read back (D10)
+ *   step 2  the driver's selftest attribute; its readings are judged again
+ *           here against the windows of steps 2-17..2-22
+ *   step 3  samples from the buffer on the driver's data-ready trigger
+ *           (INT1): accelerometer X, Y, Z and the temperature code; the
+ *           driver checks ST1 and EMPT of every sample and delivers none
+ *           that fails, and the DAC goes through calibbias
+ *
+ * The RSTN and INT2 pin checks of D11 need the pins, which the driver owns:
+ * they are reported as skipped (run --backend raw with the driver unbound
+ * for them). Every attribute the test changes is saved first and put back
+ * by finish(), so the device is left as it was found; a command that wants
+ * the new calibration applied writes it afterwards (iio_apply_record()).
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <dirent.h>
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "ftest_internal.h"
+#include "iio.h"
+
+/*
+ * Data-ready rate during the test: a filtered accelerometer sample takes
+ * 4.8 ms plus two bus transfers, so 100 Hz leaves room on a slow bus.
+ */
+#define IIO_TEST_RATE_HZ	"100"
+#define IIO_TEST_RATE		100
+/* Buffer length during the test, in samples */
+#define IIO_TEST_BUFFER_LEN	"256"
+/* How late the last of a run's samples may be */
+#define IIO_SAMPLE_SLACK_MS	1000
+#define IIO_SAVED_MAX		32
+#define IIO_NAME_MAX		64
+#define IIO_SCAN_CHANNELS	4
+/* Beyond any adjusted reading: 4096 * (255 + 128) / 256 */
+#define IIO_SELFTEST_ABS_MAX	8192.0
+
+static const char *const calibbias_attr[AS9888_AXES] = {
+	"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
+};
+
+/* The buffer's channels the test uses, in the order of this table */
+static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
+	"in_accel_x", "in_accel_y", "in_accel_z", "in_temp",
+};
+
+/* Where one channel sits in a buffer sample, from its _index and _type */
+struct scan_layout {
+	unsigned int index;
+	unsigned int offset;
+	unsigned int bytes;
+	unsigned int realbits;
+	unsigned int shift;
+	bool is_signed;
+	bool big_endian;
+};
+
+struct saved_attr {
+	char name[IIO_NAME_MAX];
+	char value[IIO_ATTR_MAX];
+};
+
+/**
+ * struct iio_test_dev - the driver-backed test device
+ * @dir:	the IIO device's sysfs directory
+ * @scan_dir:	its scan_elements directory, relative to @dir
+ * @chardev:	its character device
+ * @trigger:	the name of its data-ready trigger
+ * @layout:	where each of scan_channel[] sits in a sample
+ * @sample_bytes: size of one buffer sample
+ * @saved:	attributes to put back at the end, in this order
+ * @n_saved:	how many
+ * @saving:	attributes are being saved (before the first change)
+ */
+struct iio_test_dev {
+	char dir[IIO_PATH_MAX];
+	const char *scan_dir;
+	char chardev[IIO_PATH_MAX];
+	char trigger[IIO_NAME_MAX];
+	struct scan_layout layout[IIO_SCAN_CHANNELS];
+	unsigned int sample_bytes;
+	struct saved_attr saved[IIO_SAVED_MAX];
+	unsigned int n_saved;
+};
+
+/* Remember @name's value, once, so that finish() can put it back */
+static int save_attr(struct iio_test_dev *d, const char *name)
+{
+	struct saved_attr *a;
+	unsigned int i;
+	int ret;
+
+	for (i = 0; i < d->n_saved; i++)
+		if (!strcmp(d->saved[i].name, name))
+			return 0;
+	if (d->n_saved == IIO_SAVED_MAX)
+		return -ENOSPC;
+	a = &d->saved[d->n_saved];
+	snprintf(a->name, sizeof(a->name), "%s", name);
+	ret = iio_read_attr(d->dir, name, a->value, sizeof(a->value));
+	if (ret < 0)
+		return ret;
+	d->n_saved++;
+
+	return 0;
+}
+
+/* Save, then write @value to @name */
+static int change_attr(struct iio_test_dev *d, const char *name,
+		       const char *value)
+{
+	int ret = save_attr(d, name);
+
+	return ret ? ret : iio_write_attr(d->dir, name, value);
+}
+
+static uint64_t iio_now_ns(struct ftest_ctx *x)
+{
+	struct timespec ts;
+
+	(void)x;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+
+	return (uint64_t)ts.tv_sec * 1000000000ULL + (uint64_t)ts.tv_nsec;
+}
+
+static void iio_sleep_ns(struct ftest_ctx *x, uint64_t ns)
+{
+	struct timespec ts = {
+		.tv_sec = (time_t)(ns / 1000000000ULL),
+		.tv_nsec = (long)(ns % 1000000000ULL),
+	};
+
+	(void)x;
+	while (nanosleep(&ts, &ts) && errno == EINTR)
+		;
+}
+
+/* Write the DAC values through calibbias and read them back into x->dac */
+static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
+		   const char *step, bool *same)
+{
+	const struct as9888_eeprom *ee = &x->res->ee;
+	struct iio_test_dev *d = x->dev;
+	char want[IIO_ATTR_MAX], got[IIO_ATTR_MAX];
+	int axis, ret;
+
+	*same = true;
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		uint8_t ga = ee->axis[axis].ga;
+		char *end;
+		long lin;
+
+		snprintf(want, sizeof(want), "%d", as9888_dac2lin(ga, dac[axis]));
+		ret = change_attr(d, calibbias_attr[axis], want);
+		if (!ret && iio_read_attr(d->dir, calibbias_attr[axis], got,
+					  sizeof(got)) < 0)
+			ret = -EIO;
+		if (ret)
+			return ftest_io_failed(x, step, calibbias_attr[axis], ret);
+		errno = 0;
+		lin = strtol(got, &end, 10);
+		if (errno || end == got || *end || lin < -AS9888_DAC_LIN_MAX ||
+		    lin > AS9888_DAC_LIN_MAX) {
+			ftest_judge(x, step, calibbias_attr[axis], false,
+				    "-67..67", "reads \"%s\"", got);
+			return -EIO;
+		}
+		x->dac[axis] = as9888_lin2dac(ga, (int)lin);
+		if (x->dac[axis] != dac[axis])
+			*same = false;
+	}
+
+	return 0;
+}
+
+/* The driver's data-ready trigger, named <name>-dev<N> */
+static int find_trigger(struct iio_test_dev *d)
+{
+	const char *base = strrchr(d->dir, '/');
+	char bus[IIO_PATH_MAX], name[IIO_NAME_MAX], want[IIO_NAME_MAX];
+	struct dirent *de;
+	DIR *dir;
+	int ret = -ENOENT;
+
+	snprintf(want, sizeof(want), "%s-dev%s", IIO_DEVICE_NAME,
+		 base + 1 + strlen(IIO_DEVICE_PREFIX));
+	snprintf(bus, sizeof(bus), "%s/bus/iio/devices", iio_sysfs_root());
+	dir = opendir(bus);
+	if (!dir)
+		return -errno;
+	while ((de = readdir(dir))) {
+		char tdir[IIO_PATH_MAX];
+
+		if (strncmp(de->d_name, IIO_TRIGGER_PREFIX,
+			    strlen(IIO_TRIGGER_PREFIX)) ||
+		    snprintf(tdir, sizeof(tdir), "%s/%s", bus, de->d_name) >=
+		    (int)sizeof(tdir))
+			continue;
+		if (iio_read_attr(tdir, "name", name, sizeof(name)) > 0 &&
+		    !strcmp(name, want)) {
+			snprintf(d->trigger, sizeof(d->trigger), "%s", name);
+			ret = 0;
+			break;
+		}
+	}
+	closedir(dir);
+
+	return ret;
+}
+
+static int iio_step1(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	const uint8_t *dac;
+	uint8_t raw[AS9888_EEPROM_LEN], want[AS9888_AXES];
+	char val[IIO_ATTR_MAX];
+	bool same;
+	int axis, ret;
+
+	ftest_skip(x, "1-2", "RSTN pin check (D11)",
+		   "the driver owns RSTN (--backend raw with the driver unbound checks it)");
+	ftest_judge(x, "1-4", "device ID (WIA)", true, "0x48",
+		    "checked by the driver when it bound to %s", d->dir);
+
+	/* the test takes the buffer: never from another program */
+	ret = iio_read_attr(d->dir, "buffer/enable", val, sizeof(val));
+	if (ret < 0)
+		return ftest_io_failed(x, "1-4", "buffer/enable", ret);
+	if (!ftest_judge(x, "1-4", "device free for the test", !strcmp(val, "0"),
+			 "buffer not enabled", "%s%s", d->dir,
+			 strcmp(val, "0") ?
+			 ": another program is capturing from it; stop that first" : "")) {
+		x->stop = true;
+		return -EBUSY;
+	}
+
+	ret = iio_read_eeprom(d->dir, raw);
+	if (ret)
+		return ftest_io_failed(x, "1-7", "EEPROM read (NVMEM)", ret);
+	ret = ftest_check_eeprom(x, raw);
+	if (ret || x->stop)
+		return ret;
+
+	/* 1-30..1-39: the DAC values; the driver loaded the other trims */
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		want[axis] = x->res->ee.axis[axis].da;
+	dac = x->o->apply_dac ? x->o->apply_dac : want;
+	ret = put_dac(x, dac, "1-39", &same);
+	if (ret)
+		return ret;
+	ftest_judge(x, "1-39", "register R/W check (D10)", same,
+		    "calibbias reads back what was written",
+		    "DAC 0x%02x 0x%02x 0x%02x", x->dac[0], x->dac[1], x->dac[2]);
+
+	return 0;
+}
+
+/* "pass|fail X Y Z" with three decimals; the readings back in Q8 */
+static int parse_selftest(const char *s, bool *pass, int32_t adj_q8[AS9888_AXES])
+{
+	char verdict[8], tail;
+	double v[AS9888_AXES];
+	int axis;
+
+	if (sscanf(s, "%7s %lf %lf %lf %c", verdict, &v[0], &v[1], &v[2],
+		   &tail) != 4)
+		return -EINVAL;
+	if (!strcmp(verdict, "pass"))
+		*pass = true;
+	else if (!strcmp(verdict, "fail"))
+		*pass = false;
+	else
+		return -EINVAL;
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		/* 1/1000 rounding is finer than 1/256: the Q8 value is exact */
+		if (!(v[axis] > -IIO_SELFTEST_ABS_MAX &&
+		      v[axis] < IIO_SELFTEST_ABS_MAX))
+			return -EINVAL;
+		adj_q8[axis] = (int32_t)(v[axis] * AS9888_Q8_ONE +
+					 (v[axis] < 0 ? -0.5 : 0.5));
+	}
+
+	return 0;
+}
+
+static int iio_step2(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	int32_t adj[AS9888_AXES];
+	char val[IIO_ATTR_MAX];
+	bool pass, windows = true;
+	int axis, ret;
+
+	ret = iio_write_attr(d->dir, "selftest", "1");
+	if (!ftest_judge(x, "2-4", "measurement completes", !ret,
+			 "the driver's selftest runs both measurements", "%s",
+			 ret ? strerror(-ret) : "done"))
+		return 0;
+	ret = iio_read_attr(d->dir, "selftest", val, sizeof(val));
+	if (ret < 0)
+		return ftest_io_failed(x, "2-15", "selftest result", ret);
+	if (!ftest_judge(x, "2-15", "self-test result readable",
+			 !parse_selftest(val, &pass, adj), "pass|fail X Y Z",
+			 "\"%s\"", val))
+		return 0;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		bool ok = as9888_selftest_window_ok(axis, adj[axis]);
+
+		windows &= ok;
+		if (!ftest_judge_selftest_axis(x, axis, ok, adj[axis], "") &&
+		    x->stop)
+			return 0;
+	}
+	/*
+	 * The driver also fails the test on a magnetometer overflow in the
+	 * normal measurement or HST in either: with the windows met, that
+	 * is what its verdict adds.
+	 */
+	if (windows)
+		ftest_judge(x, "2-13", "normal measurement without overflow",
+			    pass, "driver's verdict pass",
+			    "driver's verdict %s", pass ? "pass" : "fail");
+	else
+		ftest_judge(x, "2-23", "driver's verdict agrees", !pass,
+			    "fail when a window is missed", "%s",
+			    pass ? "pass" : "fail");
+
+	return 0;
+}
+
+/* "le:s12/16>>0" */
+static int parse_type(const char *s, struct scan_layout *l)
+{
+	char endian[3] = "", sign;
+	unsigned int storage;
+
+	if (sscanf(s, "%2c:%c%u/%u>>%u", endian, &sign, &l->realbits,
+		   &storage, &l->shift) != 5 || (sign != 's' && sign != 'u') ||
+	    (strcmp(endian, "le") && strcmp(endian, "be")) ||
+	    (storage != 8 && storage != 16 && storage != 32) ||
+	    !l->realbits || l->realbits + l->shift > storage)
+		return -EINVAL;
+	l->is_signed = sign == 's';
+	l->big_endian = !strcmp(endian, "be");
+	l->bytes = storage / 8;
+
+	return 0;
+}
+
+/* Only scan_channel[] enabled; their places in a sample */
+static int setup_scan(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	char path[IIO_PATH_MAX], name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
+	unsigned int i, j, offset = 0, order[IIO_SCAN_CHANNELS];
+	struct dirent *de;
+	DIR *dir;
+	int ret = 0;
+
+	if (snprintf(path, sizeof(path), "%s/%s", d->dir, d->scan_dir) >=
+	    (int)sizeof(path))
+		return ftest_io_failed(x, "3-1", "scan elements", -ENAMETOOLONG);
+	dir = opendir(path);
+	if (!dir)
+		return ftest_io_failed(x, "3-1", "scan elements", -errno);
+	while (!ret && (de = readdir(dir))) {
+		size_t len = strlen(de->d_name);
+
+		if (len < 4 || strcmp(de->d_name + len - 3, "_en"))
+			continue;
+		snprintf(name, sizeof(name), "%s/%s", d->scan_dir, de->d_name);
+		ret = change_attr(d, name, "0");
+	}
+	closedir(dir);
+	if (ret)
+		return ftest_io_failed(x, "3-1", "scan elements", ret);
+
+	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
+		struct scan_layout *l = &d->layout[i];
+
+		snprintf(name, sizeof(name), "%s/%s_en", d->scan_dir, scan_channel[i]);
+		ret = change_attr(d, name, "1");
+		snprintf(name, sizeof(name), "%s/%s_index", d->scan_dir,
+			 scan_channel[i]);
+		if (!ret && iio_read_attr(d->dir, name, val, sizeof(val)) <= 0)
+			ret = -EIO;
+		if (!ret && sscanf(val, "%u", &l->index) != 1)
+			ret = -EINVAL;
+		snprintf(name, sizeof(name), "%s/%s_type", d->scan_dir,
+			 scan_channel[i]);
+		if (!ret && iio_read_attr(d->dir, name, val, sizeof(val)) <= 0)
+			ret = -EIO;
+		if (!ret)
+			ret = parse_type(val, l);
+		if (ret)
+			return ftest_io_failed(x, "3-1", scan_channel[i], ret);
+		order[i] = i;
+	}
+
+	/* in a sample the channels follow their index, each aligned */
+	for (i = 1; i < IIO_SCAN_CHANNELS; i++)
+		for (j = i; j > 0 && d->layout[order[j - 1]].index >
+				     d->layout[order[j]].index; j--) {
+			unsigned int t = order[j];
+
+			order[j] = order[j - 1];
+			order[j - 1] = t;
+		}
+	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
+		struct scan_layout *l = &d->layout[order[i]];
+
+		offset = (offset + l->bytes - 1) / l->bytes * l->bytes;
+		l->offset = offset;
+		offset += l->bytes;
+	}
+	d->sample_bytes = offset;
+
+	return 0;
+}
+
+static int iio_level_setup(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	int ret;
+
+	ret = change_attr(d, "in_accel_filter_low_pass_en", x->o->lpf ? "1" : "0");
+	if (ret)
+		return ftest_io_failed(x, "3-1", "low-pass filter set-up", ret);
+	if (!ftest_judge(x, "3-1", "data-ready trigger", !find_trigger(d),
+			 "the driver's INT1 trigger exists",
+			 *d->trigger ? "%s" :
+			 "none: INT1 is not wired to the driver (%s); use --backend raw",
+			 *d->trigger ? d->trigger : d->dir))
+		return -ENODEV;
+	ret = setup_scan(x);
+	if (ret)
+		return ret;
+	ret = change_attr(d, "trigger/current_trigger", d->trigger);
+	if (!ret)
+		ret = change_attr(d, "buffer/length", IIO_TEST_BUFFER_LEN);
+	if (!ret)
+		ret = change_attr(d, "sampling_frequency", IIO_TEST_RATE_HZ);
+	if (ret)
+		return ftest_io_failed(x, "3-1", "buffer set-up", ret);
+
+	return 0;
+}
+
+static int32_t channel_value(const struct scan_layout *l, const uint8_t *sample)
+{
+	const uint8_t *p = sample + l->offset;
+	uint32_t v = 0;
+	unsigned int i;
+
+	for (i = 0; i < l->bytes; i++)
+		v |= (uint32_t)p[l->big_endian ? i : l->bytes - 1 - i]
+		     << (8 * (l->bytes - 1 - i));
+	v >>= l->shift;
+	v &= l->realbits == 32 ? UINT32_MAX : (1U << l->realbits) - 1;
+	if (l->is_signed && l->realbits < 32 && (v & (1U << (l->realbits - 1))))
+		return (int32_t)(v | ~((1U << l->realbits) - 1));
+
+	return (int32_t)v;
+}
+
+/* Read @n samples from @fd into @r, at most until @deadline */
+static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
+			uint64_t deadline, struct level_run *r)
+{
+	struct iio_test_dev *d = x->dev;
+	uint8_t buf[IIO_SCAN_CHANNELS * sizeof(uint32_t)];
+	size_t have = 0;
+
+	while (r->n < n) {
+		struct pollfd pfd = { .fd = fd, .events = POLLIN };
+		uint64_t now = iio_now_ns(x);
+		struct chip_sample s = { 0 };
+		ssize_t got;
+		int axis;
+
+		if (now >= deadline)
+			return -ETIMEDOUT;
+		if (poll(&pfd, 1, (int)((deadline - now) / NS_PER_MS) + 1) < 0) {
+			if (errno == EINTR)
+				continue;
+			return -errno;
+		}
+		got = read(fd, buf + have, d->sample_bytes - have);
+		if (got < 0) {
+			if (errno == EAGAIN || errno == EINTR)
+				continue;
+			return -errno;
+		}
+		have += (size_t)got;
+		if (have < d->sample_bytes)
+			continue;
+		have = 0;
+		for (axis = 0; axis < AS9888_AXES; axis++)
+			s.acc[axis] = (int16_t)channel_value(&d->layout[axis], buf);
+		s.tmps = (uint8_t)channel_value(&d->layout[AS9888_AXES], buf);
+		level_run_add(r, &s);
+	}
+
+	return 0;
+}
+
+static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
+			     struct level_run *r)
+{
+	struct iio_test_dev *d = x->dev;
+	uint64_t start = iio_now_ns(x);
+	uint64_t deadline = start + (uint64_t)n * 1000000000ULL / IIO_TEST_RATE +
+			    IIO_SAMPLE_SLACK_MS * NS_PER_MS;
+	int fd, ret;
+
+	level_run_init(r);
+	r->status_by_driver = true;
+	if (d->sample_bytes > IIO_SCAN_CHANNELS * sizeof(uint32_t))
+		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
+	fd = open(d->chardev, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	if (fd < 0)
+		return ftest_io_failed(x, step, d->chardev, -errno);
+	ret = iio_write_attr(d->dir, "buffer/enable", "1");
+	if (ret) {
+		close(fd);
+		return ftest_io_failed(x, step, "buffer/enable", ret);
+	}
+	ret = read_samples(x, fd, n, deadline, r);
+	iio_write_attr(d->dir, "buffer/enable", "0");
+	close(fd);
+
+	if (ret == -ETIMEDOUT) {
+		ftest_judge(x, step, "samples delivered (INT1, ST1, EMPT)", false,
+			    "N samples from the data-ready trigger",
+			    "%u of %u within %llu ms: INT1 silent or samples failing the driver's checks (see the kernel log)",
+			    r->n, n,
+			    (unsigned long long)((iio_now_ns(x) - start) / NS_PER_MS));
+		x->stop = true;
+		return ret;
+	}
+	if (ret)
+		return ftest_io_failed(x, step, d->chardev, ret);
+
+	return 0;
+}
+
+static int iio_write_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES])
+{
+	bool same;
+	int ret;
+
+	ret = put_dac(x, dac, "3-26", &same);
+	if (ret)
+		return ret;
+	ftest_judge(x, "3-26", "DAC written (3-24..3-26, D2)", same,
+		    "read-back equals DACopt", "0x%02x 0x%02x 0x%02x",
+		    x->dac[0], x->dac[1], x->dac[2]);
+
+	return 0;
+}
+
+/*
+ * Put every changed attribute back, in the order they were changed; the
+ * calibration last, as calibbias writes shift it.
+ */
+static void iio_finish(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	const struct saved_attr *cal = NULL;
+	unsigned int i;
+
+	iio_write_attr(d->dir, "buffer/enable", "0");
+	for (i = 0; i < d->n_saved; i++) {
+		const struct saved_attr *a = &d->saved[i];
+
+		if (!strcmp(a->name, "in_accel_calibration")) {
+			cal = a;
+			continue;
+		}
+		if (iio_write_attr(d->dir, a->name, a->value))
+			fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
+				d->dir, a->name, a->value);
+	}
+	if (cal && iio_write_attr(d->dir, cal->name, cal->value))
+		fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
+			d->dir, cal->name, cal->value);
+}
+
+static const struct ftest_device_ops iio_ops = {
+	.step1 = iio_step1,
+	.step2 = iio_step2,
+	.level_setup = iio_level_setup,
+	.level_collect = iio_level_collect,
+	.write_dac = iio_write_dac,
+	.finish = iio_finish,
+	.now_ns = iio_now_ns,
+	.sleep_ns = iio_sleep_ns,
+};
+
+int ftest_run_iio(const char *dir, const struct ftest_opts *o,
+		  struct ftest_result *res)
+{
+	struct iio_test_dev *d;
+	struct ftest_ctx x = { .ops = &iio_ops, .o = o, .res = res };
+	char probe[IIO_PATH_MAX];
+	const char *base = strrchr(dir, '/');
+	int ret;
+
+	if (!base || strncmp(base + 1, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX)))
+		return -EINVAL;
+	d = calloc(1, sizeof(*d));
+	if (!d)
+		return -ENOMEM;
+	snprintf(d->dir, sizeof(d->dir), "%s", dir);
+	snprintf(d->chardev, sizeof(d->chardev), "/dev/%s", base + 1);
+	/* scan_elements/ on every kernel; buffer0/ holds the same files */
+	snprintf(probe, sizeof(probe), "%s/scan_elements", dir);
+	d->scan_dir = access(probe, F_OK) ? "buffer0" : "scan_elements";
+
+	/*
+	 * Everything the test may change is saved before its first change,
+	 * the calibration too (calibbias writes shift it).
+	 */
+	ret = save_attr(d, "in_accel_calibration");
+	if (ret) {
+		free(d);
+		report_add(&res->report, "1-4", "device attributes", JUDGMENT_FAIL,
+			   NULL, "%s/in_accel_calibration: %s", dir, strerror(-ret));
+		return ret;
+	}
+	x.dev = d;
+	ret = ftest_engine_run(&x);
+	free(d);
+
+	return ret;
+}
