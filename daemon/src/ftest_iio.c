@@ -14,9 +14,10 @@
  *           driver checks ST1 and EMPT of every sample and delivers none
  *           that fails, and the DAC goes through calibbias
  *
- * The RSTN and INT2 pin checks of D11 need the pins, which the driver owns:
- * they are reported as skipped (run --backend raw with the driver unbound
- * for them). Every attribute the test changes is saved first and put back
+ * Of the pin checks of D11, INT1 is judged by the data-ready trigger
+ * delivering samples; RSTN and INT2 need the pins, which the driver owns or
+ * does not use: they are reported as skipped (run --backend raw with the
+ * driver unbound for them). Every attribute the test changes is saved first and put back
  * by finish(), so the device is left as it was found; a command that wants
  * the new calibration applied writes it afterwards (iio_apply_record()).
  */
@@ -84,7 +85,7 @@ struct saved_attr {
  * @sample_bytes: size of one buffer sample
  * @saved:	attributes to put back at the end, in this order
  * @n_saved:	how many
- * @saving:	attributes are being saved (before the first change)
+ * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
  */
 struct iio_test_dev {
 	char dir[IIO_PATH_MAX];
@@ -95,6 +96,7 @@ struct iio_test_dev {
 	unsigned int sample_bytes;
 	struct saved_attr saved[IIO_SAVED_MAX];
 	unsigned int n_saved;
+	bool int1_seen;
 };
 
 /* Remember @name's value, once, so that finish() can put it back */
@@ -110,7 +112,8 @@ static int save_attr(struct iio_test_dev *d, const char *name)
 	if (d->n_saved == IIO_SAVED_MAX)
 		return -ENOSPC;
 	a = &d->saved[d->n_saved];
-	snprintf(a->name, sizeof(a->name), "%s", name);
+	if (snprintf(a->name, sizeof(a->name), "%s", name) >= (int)sizeof(a->name))
+		return -ENAMETOOLONG;
 	ret = iio_read_attr(d->dir, name, a->value, sizeof(a->value));
 	if (ret < 0)
 		return ret;
@@ -303,9 +306,10 @@ static int iio_step2(struct ftest_ctx *x)
 	struct iio_test_dev *d = x->dev;
 	int32_t adj[AS9888_AXES];
 	char val[IIO_ATTR_MAX];
-	bool pass, windows = true;
+	bool pass = false, windows = true;
 	int axis, ret;
 
+	ftest_skip(x, "2-4", "INT2 pin check (D11)", "the driver does not use INT2");
 	ret = iio_write_attr(d->dir, "selftest", "1");
 	if (!ftest_judge(x, "2-4", "measurement completes", !ret,
 			 "the driver's selftest runs both measurements", "%s",
@@ -556,6 +560,11 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	}
 	if (ret)
 		return ftest_io_failed(x, step, d->chardev, ret);
+	if (!d->int1_seen)
+		ftest_judge(x, step, "INT1 pin check (D11)", true,
+			    "the data-ready trigger fires on INT1",
+			    "%u samples from %s", r->n, d->trigger);
+	d->int1_seen = true;
 
 	return 0;
 }

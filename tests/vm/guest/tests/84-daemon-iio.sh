@@ -1,0 +1,160 @@
+# SPDX-License-Identifier: GPL-2.0
+# as9888-calibd's test engine through the bound driver (--backend iio):
+# the full factory test on a healthy unit, its record put in effect, the
+# same DAC values as the register engine finds on the same unit; check,
+# recalibrate after a "shock" and rollback, also as daemon requests; every
+# fault fails at its step; the device's attributes are left as found.
+CALIBD=/bin/as9888-calibd
+U84="temperature = 25
+offset = 40 -25 60
+noise = 0.5
+seed = 7"
+mkdir -p /tmp/iio
+
+# json_field FILE KEY: a top-level string or number of the JSON report
+json_field() {
+	sed -n "s/^  \"$2\": \"*\([^\",]*\)\"*,*\$/\1/p" "$1" | head -n 1
+}
+# record_dac FILE: the record's DAC line
+record_dac() { sed -n 's/^dac = //p' "$1"; }
+# state: every attribute the test may change, one line each
+state() {
+	for a in in_accel_x_calibbias in_accel_y_calibbias in_accel_z_calibbias \
+		in_accel_calibration in_accel_filter_low_pass_en sampling_frequency \
+		trigger/current_trigger buffer/length; do
+		echo "$a=$(cat $DEV/$a)"
+	done
+	SE=$DEV/scan_elements
+	[ -d "$SE" ] || SE=$DEV/buffer0
+	for e in $SE/*_en; do echo "$(basename $e)=$(cat $e)"; done
+}
+uptime_ms() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
+ft_iio() {
+	_t0=$(uptime_ms)
+	$CALIBD factory-test --backend iio --json "$@" > /tmp/iio/ft.json 2> /tmp/iio/ft.err
+	FT_RC=$?
+	FT_WALL_MS=$(( $(uptime_ms) - _t0 ))
+}
+
+load_driver
+load_sim
+printf '%s\n' "$U84" > /tmp/iio/unit.txt
+printf '%s\n' "$U84" > $SIM/unit
+wait_dev 5
+
+# Leave odd settings in place: the test must put every one of them back
+echo 10 > $DEV/sampling_frequency
+echo 1 > $DEV/in_accel_filter_low_pass_en
+echo 3 > $DEV/in_accel_x_calibbias
+SE=$DEV/scan_elements
+[ -d "$SE" ] || SE=$DEV/buffer0
+echo 1 > $SE/in_magn_x_en
+BEFORE=$(state)
+
+rm -f /tmp/iio/rec
+ft_iio --record /tmp/iio/rec
+diag "factory-test --backend iio: exit $FT_RC, report $(json_field /tmp/iio/ft.json duration_ms) ms, wall $FT_WALL_MS ms"
+diag "factory test duration (iio backend): $(json_field /tmp/iio/ft.json duration_ms) ms"
+eq "factory test through the driver passes" "$FT_RC $(json_field /tmp/iio/ft.json result)" "0 pass"
+[ "$FT_RC" = 0 ] || sed 's/^/# /' /tmp/iio/ft.err
+check "the report judges D11's INT1 through the data-ready trigger" \
+	grep -q '"INT1 pin check (D11)", "measured": "[0-9]* samples from as9888-dev[0-9]*".*"pass"' /tmp/iio/ft.json
+check "RSTN and INT2 checks are reported as skipped, not passed" \
+	sh -c "grep -q '\"RSTN pin check (D11)\".*\"skip\"' /tmp/iio/ft.json &&
+	       grep -q '\"INT2 pin check (D11)\".*\"skip\"' /tmp/iio/ft.json"
+check "self-test judged from the driver's readings" \
+	grep -q '"self-test Z after adjustment", "measured": "[0-9]*\.[0-9]*".*"pass"' /tmp/iio/ft.json
+check "record written" test -s /tmp/iio/rec
+AFTER=$(state)
+CAL=$(cat $DEV/in_accel_calibration)
+check "the new calibration is in effect" \
+	sh -c "echo '$CAL' | awk 'NF == 7 && \$7 != 0 { ok = 1 } END { exit !ok }'"
+# everything but the DAC and the calibration as it was
+eq "the other attributes are as they were found" \
+	"$(echo "$AFTER" | grep -v -e calibbias -e calibration)" \
+	"$(echo "$BEFORE" | grep -v -e calibbias -e calibration)"
+echo none > $DEV/in_accel_calibration
+check "restore of that record gives the same calibration" \
+	sh -c "$CALIBD restore --backend iio --record /tmp/iio/rec && [ \"\$(cat $DEV/in_accel_calibration)\" = '$CAL' ]"
+
+# Level axes compensated: (raw + offset) near 0 for X and Y
+echo 0 > $DEV/in_accel_filter_low_pass_en
+for a in x y; do
+	R=$(cat $DEV/in_accel_${a}_raw)
+	O=$(cat $DEV/in_accel_${a}_offset)
+	check "in_accel_${a}: raw $R + offset $O within 4 LSB of 0 g" \
+		awk "BEGIN { d = $R + $O; exit !(d < 4 && d > -4) }"
+done
+
+# The register engine on the same unit finds the same DAC values
+$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/iio/unit.txt \
+	--record /tmp/iio/rec-sim > /dev/null 2>&1
+eq "same DACopt as the register engine on this unit" \
+	"$(record_dac /tmp/iio/rec)" "$(record_dac /tmp/iio/rec-sim)"
+
+# Field repair through the driver
+check "check: no recalibration needed right after the factory test" \
+	sh -c "$CALIBD check --backend iio --record /tmp/iio/rec | grep -q 'No recalibration needed'"
+# a shock moves X by 20 LSB (the chip is re-instantiated: restore first)
+set_unit "temperature = 25" "offset = 60 -25 60" "noise = 0.5" "seed = 7"
+wait_dev 5
+check "restore after the re-probe" $CALIBD restore --backend iio --record /tmp/iio/rec
+$CALIBD check --backend iio --record /tmp/iio/rec > /tmp/iio/check.txt 2>&1
+sed 's/^/# /' /tmp/iio/check.txt
+check "check: recalibration advisable after the shock" grep -q 'advisable' /tmp/iio/check.txt
+OLD_CAL=$(cat $DEV/in_accel_calibration)
+check "recalibrate through the driver" \
+	sh -c "$CALIBD recalibrate --backend iio --record /tmp/iio/rec > /tmp/iio/recal.txt 2>&1"
+tail -n 2 /tmp/iio/recal.txt | sed 's/^/# /'
+check "the previous record is kept" test -s /tmp/iio/rec.previous
+check "check after recalibrating: no recalibration needed" \
+	sh -c "$CALIBD check --backend iio --record /tmp/iio/rec | grep -q 'No recalibration needed'"
+check "rollback through the driver" $CALIBD rollback --backend iio --record /tmp/iio/rec
+eq "rollback puts the earlier calibration back in effect" \
+	"$(cat $DEV/in_accel_calibration)" "$OLD_CAL"
+
+# The same through the daemon's socket
+$CALIBD daemon --backend iio --record /tmp/iio/rec --socket /tmp/iio/sock 2>/tmp/iio/daemon.log &
+DPID84=$!
+_i=0
+while [ ! -S /tmp/iio/sock ] && [ $_i -lt 50 ]; do sleep 0.1; _i=$((_i + 1)); done
+check "request check through the daemon" \
+	sh -c "$CALIBD request check --socket /tmp/iio/sock | grep -q 'advisable'"
+check "request recalibrate through the daemon" \
+	sh -c "$CALIBD request recalibrate --socket /tmp/iio/sock > /tmp/iio/req.txt 2>&1"
+check "request check afterwards: no recalibration needed" \
+	sh -c "$CALIBD request check --socket /tmp/iio/sock | grep -q 'No recalibration needed'"
+kill -TERM $DPID84
+wait $DPID84 2>/dev/null
+
+# Each fault fails the test at its step (or is out of the driver's sight)
+for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
+	"stuck_x 3-23" "saturate_z 3-16" "selftest_weak 2-21" "eeprom_blank nodev" \
+	"wia nodev" "nak any"; do
+	set -- $f
+	set_unit "fault = $1"
+	if ! wait_dev 3; then
+		eq "$1: no device to test (probe refused the unit)" nodev "$2"
+		continue
+	fi
+	S0=$(state)
+	rm -f /tmp/iio/frec
+	ft_iio --record /tmp/iio/frec
+	GOT=$(json_field /tmp/iio/ft.json failed_step)
+	[ -n "$GOT" ] && [ "$GOT" != null ] || GOT=$(json_field /tmp/iio/ft.json result)
+	[ -n "$GOT" ] || GOT="exit $FT_RC: $(head -c 200 /tmp/iio/ft.err)"
+	diag "$1: $GOT, exit $FT_RC, $FT_WALL_MS ms: $(grep -o '"name": "[^"]*", "measured": "[^"]*", "limits": "[^"]*", "result": "fail"' /tmp/iio/ft.json | head -n 1)"
+	# nak: every 50th transfer fails, wherever it falls
+	[ "$2" = any ] || eq "$1: the test ends at $2" "$GOT" "$2"
+	if [ "$GOT" = pass ]; then
+		eq "$1: passed, attributes as found but for the new calibration" \
+			"$(state | grep -v -e calibbias -e calibration)" \
+			"$(echo "$S0" | grep -v -e calibbias -e calibration)"
+	else
+		check_not "$1: no record written" test -e /tmp/iio/frec
+		eq "$1: failed, every attribute as found" "$(state)" "$S0"
+	fi
+done
+
+set_unit "temperature = 25"
+wait_dev 5
