@@ -36,6 +36,8 @@
 #include <linux/property.h>
 #include <linux/regmap.h>
 #include <linux/regulator/consumer.h>
+#include <linux/slab.h>
+#include <linux/string.h>
 #include <linux/sysfs.h>
 #include <linux/wait.h>
 
@@ -92,7 +94,11 @@
 
 /* Accepted level-test mean: twice the range any DAC setting can shift */
 #define AS9888_CALIB_A_MAX_Q16		(16384 * AS9888_Q16_ONE)
-#define AS9888_CALIB_FIELDS		7
+/* Fields of in_accel_calibration: A_x A_y A_z t_L G_x G_y G_z */
+#define AS9888_CALIB_A			0
+#define AS9888_CALIB_T			AS9888_AXES
+#define AS9888_CALIB_G			(AS9888_CALIB_T + 1)
+#define AS9888_CALIB_FIELDS		(AS9888_CALIB_G + AS9888_AXES)
 
 enum as9888_scan {
 	AS9888_SCAN_ACCEL_X,
@@ -1066,6 +1072,40 @@ static ssize_t as9888_calibration_read(struct iio_dev *indio_dev,
 }
 
 /**
+ * as9888_parse_ints() - parse whitespace-separated decimal integers
+ * @buf: the input, not NUL-terminated
+ * @len: length of @buf
+ * @vals: the integers
+ * @n: number of integers that @buf must hold
+ *
+ * Unlike sscanf(), which lets a too large number wrap around, every field
+ * must be a decimal int (kstrtoint()).
+ *
+ * Return: 0, -EINVAL when @buf does not hold exactly @n ints, or -ENOMEM.
+ */
+static int as9888_parse_ints(const char *buf, size_t len, int *vals,
+			     unsigned int n)
+{
+	char *str __free(kfree) = kstrndup(buf, len, GFP_KERNEL);
+	char *cur, *field;
+	unsigned int i = 0;
+
+	if (!str)
+		return -ENOMEM;
+
+	cur = str;
+	while ((field = strsep(&cur, " \t\n"))) {
+		if (!*field)
+			continue;
+		if (i == n || kstrtoint(field, 10, &vals[i]))
+			return -EINVAL;
+		i++;
+	}
+
+	return i == n ? 0 : -EINVAL;
+}
+
+/**
  * as9888_calibration_parse() - validate a level-test record
  * @data: driver data
  * @buf: "A_x A_y A_z t_L G_x G_y G_z"
@@ -1076,20 +1116,21 @@ static ssize_t as9888_calibration_read(struct iio_dev *indio_dev,
  * within the valid TMPS range and G has exactly one non-zero component,
  * -1 or 1.
  *
- * Return: 0 or -EINVAL.
+ * Return: 0, -EINVAL or -ENOMEM.
  */
 static int as9888_calibration_parse(struct as9888_data *data, const char *buf,
 				    size_t len, struct as9888_calibration *c)
 {
-	int a[AS9888_AXES], g[AS9888_AXES], t, end = 0, axis, ret;
+	int f[AS9888_CALIB_FIELDS], axis, t, ret;
+	const int *a = &f[AS9888_CALIB_A], *g = &f[AS9888_CALIB_G];
 	unsigned int vertical = 0;
 	s32 st_q16;
 
-	ret = sscanf(buf, "%d %d %d %d %d %d %d %n", &a[0], &a[1], &a[2], &t,
-		     &g[0], &g[1], &g[2], &end);
-	if (ret != AS9888_CALIB_FIELDS || end != len)
-		return -EINVAL;
+	ret = as9888_parse_ints(buf, len, f, AS9888_CALIB_FIELDS);
+	if (ret)
+		return ret;
 
+	t = f[AS9888_CALIB_T];
 	if (t < as9888_tmps_to_mdegc(AS9888_TMPS_MAX) ||
 	    t > as9888_tmps_to_mdegc(AS9888_TMPS_MIN))
 		return -EINVAL;
