@@ -172,6 +172,7 @@ void as9888_model_init(struct as9888_model *m, const struct as9888_unit *unit,
 	m->now_ns = now_ns;
 	m->init_ns = now_ns;
 	m->rng = m->unit.seed;
+	m->powered = true;
 	m->rstn = true;
 	m->boot_end_ns = now_ns + AS9888_T_BOOT_NS;
 	m->pd_since_ns = now_ns;
@@ -356,6 +357,8 @@ static void complete_measurement(struct as9888_model *m, u64 t_ns)
 	m->pd_since_ns = t_ns;
 	m->mode_since_ns = t_ns;
 	m->stats.measurements++;
+	if (self_test || m->meas_men)
+		m->stats.magn_measurements++;
 }
 
 static u64 reset_effect_ns(const struct as9888_model *m)
@@ -399,11 +402,34 @@ void as9888_model_advance(struct as9888_model *m, u64 now_ns)
 	}
 }
 
+void as9888_model_set_power(struct as9888_model *m, u64 now_ns, bool on)
+{
+	as9888_model_advance(m, now_ns);
+	if (on == m->powered)
+		return;
+	m->powered = on;
+	if (!on) {
+		reset_registers(m);
+		m->reset_pending = false;
+		m->stats.power_offs++;
+		return;
+	}
+	m->boot_end_ns = m->now_ns + AS9888_T_BOOT_NS;
+	m->pd_since_ns = m->now_ns;
+	m->mode_since_ns = m->now_ns;
+}
+
 void as9888_model_set_rstn(struct as9888_model *m, u64 now_ns, bool level)
 {
 	as9888_model_advance(m, now_ns);
 	if (has_fault(m, AS9888_FAULT_RSTN_OPEN) || level == m->rstn)
 		return;
+	if (!m->powered) {
+		/* nothing to reset; a rising edge after power-on boots it */
+		m->rstn = level;
+		m->reset_pending = false;
+		return;
+	}
 	m->rstn = level;
 	if (!level) {
 		m->rstn_fell_ns = m->now_ns;
@@ -441,7 +467,7 @@ static bool transfer_fails(struct as9888_model *m)
 		m->nak_count = 0;
 		nak = has_fault(m, AS9888_FAULT_NAK);
 	}
-	if (!m->rstn || m->now_ns < m->boot_end_ns)
+	if (!m->powered || !m->rstn || m->now_ns < m->boot_end_ns)
 		nak = true;
 	if (nak)
 		m->stats.naks++;
@@ -503,6 +529,26 @@ static void write_ms(struct as9888_model *m, u8 v)
 	m->meas_end_ns = now + dur;
 }
 
+u8 as9888_model_peek(const struct as9888_model *m, u8 reg)
+{
+	switch (reg) {
+	case AS9888_REG_INT1EN:
+		return m->int1en;
+	case AS9888_REG_INT2EN:
+		return m->int2en;
+	case AS9888_REG_SLCT1:
+		return m->slct1;
+	case AS9888_REG_SLCT2:
+		return m->slct2;
+	case AS9888_REG_MS:
+		return m->ms;
+	case AS9888_REG_REF1 ... AS9888_REG_AZDA:
+		return m->trim[reg - AS9888_REG_REF1];
+	default:
+		return 0;
+	}
+}
+
 static u8 read_byte(struct as9888_model *m, u8 reg)
 {
 	u8 v;
@@ -511,10 +557,6 @@ static u8 read_byte(struct as9888_model *m, u8 reg)
 	case AS9888_REG_WIA:
 		return has_fault(m, AS9888_FAULT_WIA) ? AS9888_WIA_FAULT_VAL :
 							AS9888_WIA_VAL;
-	case AS9888_REG_INT1EN:
-		return m->int1en;
-	case AS9888_REG_INT2EN:
-		return m->int2en;
 	case AS9888_REG_INT1ST:
 		v = m->dr1 ? AS9888_INTST_DR_MSK : 0;
 		m->dr1 = false;
@@ -523,12 +565,6 @@ static u8 read_byte(struct as9888_model *m, u8 reg)
 		v = m->dr2 ? AS9888_INTST_DR_MSK : 0;
 		m->dr2 = false;
 		return v;
-	case AS9888_REG_SLCT1:
-		return m->slct1;
-	case AS9888_REG_SLCT2:
-		return m->slct2;
-	case AS9888_REG_MS:
-		return m->ms;
 	case AS9888_REG_ST1:
 		return m->st1;
 	case AS9888_REG_HXL ... AS9888_REG_HXL + 5:
@@ -543,8 +579,6 @@ static u8 read_byte(struct as9888_model *m, u8 reg)
 		m->st1 &= ~(AS9888_ST1_DRDY_MSK | AS9888_ST1_DOR_MSK);
 		m->unread = false;
 		return m->st2;
-	case AS9888_REG_REF1 ... AS9888_REG_AZDA:
-		return m->trim[reg - AS9888_REG_REF1];
 	case AS9888_REG_EEPROM ... AS9888_REG_EEPROM_END:
 		if (m->ms != AS9888_MS_EEPROM ||
 		    m->now_ns - m->mode_since_ns < AS9888_T_EEP_NS)
@@ -553,7 +587,8 @@ static u8 read_byte(struct as9888_model *m, u8 reg)
 			return 0xff;
 		return m->unit.eeprom[reg - AS9888_REG_EEPROM];
 	default:
-		return 0;	/* EMPT and unlisted registers */
+		/* configuration and trim; 0 for EMPT and unlisted registers */
+		return as9888_model_peek(m, reg);
 	}
 }
 

@@ -22,6 +22,11 @@
  * Behaviour where the datasheet is silent (see also the .c file):
  *  - Power-on and the rising edge of a valid reset pulse both enter
  *    power-down at that instant, so t_PD is covered by t_BOOT.
+ *  - Supply off (as9888_model_set_power()): like RSTN held low, the chip
+ *    does not answer, its registers are at their reset values and the pins
+ *    low; power-on starts t_BOOT. The die temperature, the noise generator
+ *    and the counters carry on (they belong to the unit, not to the chip's
+ *    registers).
  *  - RSTN low: the chip does not answer (I2C NAK / SPI 0xff) while RSTN is
  *    low. Once RSTN has been low for t_RSTL the reset takes effect
  *    (registers to reset values, measurement aborted, pins low); a shorter
@@ -127,7 +132,7 @@ enum as9888_pin {
 };
 
 /**
- * struct as9888_model_stats - bus and chip counters since power-on
+ * struct as9888_model_stats - bus and chip counters since as9888_model_init()
  * @transfers:		bus transfers (reads + writes, also failed ones)
  * @reads:		read transfers
  * @writes:		write transfers
@@ -135,8 +140,11 @@ enum as9888_pin {
  * @bytes_read:		data bytes returned by successful reads
  * @bytes_written:	data bytes of successful writes
  * @measurements:	measurements completed
+ * @magn_measurements: of these, the ones that measured the magnetometer
+ *			(SLCT2.MEN set, or self-test)
  * @aborted:		measurements aborted (MS = 0 or reset)
  * @resets:		reset pulses that took effect
+ * @power_offs:		supply switched off
  */
 struct as9888_model_stats {
 	u64 transfers;
@@ -146,8 +154,10 @@ struct as9888_model_stats {
 	u64 bytes_read;
 	u64 bytes_written;
 	u64 measurements;
+	u64 magn_measurements;
 	u64 aborted;
 	u64 resets;
+	u64 power_offs;
 };
 
 /**
@@ -160,7 +170,8 @@ struct as9888_model {
 	u64 init_ns;			/* power-on time (temperature drift) */
 	u64 rng;			/* noise generator state */
 
-	/* reset pin and boot */
+	/* supply, reset pin and boot */
+	bool powered;			/* supply on */
 	bool rstn;			/* RSTN level */
 	bool reset_pending;		/* low, reset not yet taken effect */
 	u64 rstn_fell_ns;
@@ -210,6 +221,9 @@ int as9888_model_read(struct as9888_model *m, u64 now_ns, u8 reg, u8 *buf,
 int as9888_model_write(struct as9888_model *m, u64 now_ns, u8 reg,
 		       const u8 *buf, unsigned int len);
 
+/* Switch the supply (true = on); on again starts t_BOOT. */
+void as9888_model_set_power(struct as9888_model *m, u64 now_ns, bool on);
+
 /* Drive RSTN (true = high). */
 void as9888_model_set_rstn(struct as9888_model *m, u64 now_ns, bool level);
 
@@ -236,6 +250,13 @@ s32 as9888_model_temperature_mdegc(const struct as9888_model *m, u64 now_ns);
  */
 s64 as9888_model_accel_nlsb(const struct as9888_model *m, int axis,
 			    s32 t_mdegc);
+
+/*
+ * Value of a configuration or trim register (INT1EN..MS, REF1..AZDA) as
+ * the chip holds it, without the side effects or the counting of a bus
+ * read; 0 for any other register. For tests and benches.
+ */
+u8 as9888_model_peek(const struct as9888_model *m, u8 reg);
 
 static inline const struct as9888_model_stats *
 as9888_model_stats(const struct as9888_model *m)

@@ -980,6 +980,70 @@ static void test_reset_pulse(void **state)
 	assert_int_equal(M.stats.resets, 1);
 }
 
+static void test_power_off_on(void **state)
+{
+	u8 v;
+	s32 t0;
+
+	ready(NULL);
+	t0 = as9888_model_temperature_mdegc(&M, T);
+	wr(AS9888_REG_INT1EN, 1);
+	wr(AS9888_REG_SLCT2, AS9888_SLCT2_MEN_MSK);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	as9888_model_set_power(&M, T, false);
+	assert_int_equal(M.stats.aborted, 1);
+	assert_int_equal(M.stats.power_offs, 1);
+	/* unpowered: no answer, pins low, no measurement ends */
+	assert_int_equal(as9888_model_read(&M, T, 0, &v, 1), -EIO);
+	at(AS9888_T_MAG_NS);
+	assert_false(pin1());
+	assert_int_equal(M.stats.measurements, 0);
+	as9888_model_set_power(&M, T, true);
+	at(AS9888_T_BOOT_NS - 1);
+	assert_int_equal(as9888_model_read(&M, T, 0, &v, 1), -EIO);
+	at(1);
+	/* registers at their reset values, the unit's physics unchanged */
+	assert_int_equal(rd(AS9888_REG_INT1EN), 0);
+	assert_int_equal(rd(AS9888_REG_SLCT2), 0);
+	assert_int_equal(rd(AS9888_REG_REF1), 0);
+	assert_int_equal(rd(AS9888_REG_AXDA), 0x80);
+	assert_int_equal(as9888_model_temperature_mdegc(&M, T), t0);
+	assert_int_equal(M.stats.power_offs, 1);
+}
+
+static void test_magn_measurements_counted(void **state)
+{
+	boot(NULL);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	at(AS9888_T_ACC_NS + AS9888_T_PD_NS);
+	wr(AS9888_REG_SLCT2, AS9888_SLCT2_MEN_MSK);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	at(AS9888_T_MAG_NS + AS9888_T_PD_NS);
+	wr(AS9888_REG_SLCT2, 0);
+	wr(AS9888_REG_MS, AS9888_MS_SELF_TEST);
+	at(AS9888_T_MAG_NS);
+	as9888_model_advance(&M, T);
+	assert_int_equal(M.stats.measurements, 3);
+	assert_int_equal(M.stats.magn_measurements, 2);
+}
+
+static void test_peek_no_side_effects(void **state)
+{
+	u64 reads;
+
+	ready(NULL);
+	wr(AS9888_REG_INT1EN, 1);
+	wr(AS9888_REG_SLCT2, AS9888_SLCT2_ALPF_MSK);
+	reads = M.stats.reads;
+	assert_int_equal(as9888_model_peek(&M, AS9888_REG_INT1EN), 1);
+	assert_int_equal(as9888_model_peek(&M, AS9888_REG_SLCT2),
+			 AS9888_SLCT2_ALPF_MSK);
+	assert_int_equal(as9888_model_peek(&M, AS9888_REG_REF1), rd(AS9888_REG_REF1));
+	assert_int_equal(as9888_model_peek(&M, AS9888_REG_AZDA), rd(AS9888_REG_AZDA));
+	assert_int_equal(as9888_model_peek(&M, AS9888_REG_ST2), 0);
+	assert_int_equal(M.stats.reads, reads + 2);
+}
+
 static void test_reset_short_pulse_ignored(void **state)
 {
 	ready(NULL);
@@ -1944,6 +2008,9 @@ int main(void)
 		cmocka_unit_test(test_eeprom_teep_restarts),
 		cmocka_unit_test(test_reset_pulse),
 		cmocka_unit_test(test_reset_short_pulse_ignored),
+		cmocka_unit_test(test_power_off_on),
+		cmocka_unit_test(test_magn_measurements_counted),
+		cmocka_unit_test(test_peek_no_side_effects),
 		cmocka_unit_test(test_reset_boot_nak),
 		cmocka_unit_test(test_power_on_boot_nak),
 		cmocka_unit_test(test_spi_boot_reads_ff),

@@ -16,6 +16,10 @@
  *  - with the module parameter spi=1, an SPI controller (mode 3): a message is one chip
  *    select; its first byte is R/W + register, the rest the data. The
  *    model is then in SPI mode (a failed transfer reads 0xff).
+ *  - a regulator "as9888-sim-supply" that is the chip's vdd and vid: when
+ *    its last consumer disables it the chip loses power (registers to
+ *    reset values, no answer on the bus) and boots again when it is
+ *    enabled, as on a board that switches the sensor's supply.
  *  - the device "as9888" at 0x0c (or on SPI chip select 0 with the module
  *    parameter spi=1) with INT1 as its interrupt, RSTN as its
  *    reset-gpios (software node reference where gpiolib supports it, a GPIO
@@ -30,6 +34,8 @@
  *  present	"1": instantiate the device (after a power cycle of the
  *		chip), "0": remove it; read: 0/1
  *  stats	bus and chip counters; any write zeroes the bus counters
+ *  regs	the chip's configuration and trim registers as it holds them
+ *		("0xRR 0xVV" per line), read without a bus transfer
  *  bus		"i2c-N" of the adapter, and the client name
  */
 
@@ -47,6 +53,7 @@
 #include <linux/mutex.h>
 #include <linux/platform_device.h>
 #include <linux/property.h>
+#include <linux/regulator/driver.h>
 #include <linux/regulator/machine.h>
 #include <linux/slab.h>
 #include <linux/spi/spi.h>
@@ -101,6 +108,7 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @client:	the AS9888 on I2C, or NULL
  * @spi:	the AS9888 on SPI, or NULL
  * @dir:	debugfs directory
+ * @rdev:	the chip's supply
  */
 struct as9888_sim {
 	spinlock_t lock;		/* see @lock above */
@@ -127,6 +135,7 @@ struct as9888_sim {
 	struct i2c_client *client;
 	struct spi_device *spi;
 	struct dentry *dir;
+	struct regulator_dev *rdev;
 };
 
 static struct as9888_sim *sim;
@@ -269,6 +278,85 @@ static void as9888_sim_power_on(struct as9888_sim *s)
 		as9888_model_set_rstn(&s->model, ktime_get_ns(), false);
 	as9888_sim_arm(s);
 	spin_unlock_irqrestore(&s->lock, flags);
+}
+
+/* --- supply ---------------------------------------------------------------- */
+
+static int as9888_sim_supply_set(struct regulator_dev *rdev, bool on)
+{
+	struct as9888_sim *s = rdev_get_drvdata(rdev);
+	unsigned long flags;
+
+	spin_lock_irqsave(&s->lock, flags);
+	as9888_model_set_power(&s->model, ktime_get_ns(), on);
+	s->pin[0] = false;
+	s->pin[1] = false;
+	as9888_sim_arm(s);
+	spin_unlock_irqrestore(&s->lock, flags);
+	return 0;
+}
+
+static int as9888_sim_supply_enable(struct regulator_dev *rdev)
+{
+	return as9888_sim_supply_set(rdev, true);
+}
+
+static int as9888_sim_supply_disable(struct regulator_dev *rdev)
+{
+	return as9888_sim_supply_set(rdev, false);
+}
+
+/* Changed under sim->lock by the ops above and by a new unit only */
+static int as9888_sim_supply_is_enabled(struct regulator_dev *rdev)
+{
+	struct as9888_sim *s = rdev_get_drvdata(rdev);
+
+	return READ_ONCE(s->model.powered);
+}
+
+static const struct regulator_ops as9888_sim_supply_ops = {
+	.enable = as9888_sim_supply_enable,
+	.disable = as9888_sim_supply_disable,
+	.is_enabled = as9888_sim_supply_is_enabled,
+};
+
+static const struct regulator_desc as9888_sim_supply_desc = {
+	.name = "as9888-sim-supply",
+	.type = REGULATOR_VOLTAGE,
+	.owner = THIS_MODULE,
+	.ops = &as9888_sim_supply_ops,
+	.fixed_uV = 1800000,
+	.n_voltages = 1,
+};
+
+/*
+ * Both supplies of the chip; no device name: the chip's device is the
+ * only consumer on this board, and its name on SPI depends on the kernel.
+ */
+static struct regulator_consumer_supply as9888_sim_consumers[] = {
+	REGULATOR_SUPPLY("vdd", NULL),
+	REGULATOR_SUPPLY("vid", NULL),
+};
+
+static struct regulator_init_data as9888_sim_supply_init = {
+	.constraints = {
+		.valid_ops_mask = REGULATOR_CHANGE_STATUS,
+	},
+	.num_consumer_supplies = ARRAY_SIZE(as9888_sim_consumers),
+	.consumer_supplies = as9888_sim_consumers,
+};
+
+static int as9888_sim_add_supply(struct as9888_sim *s)
+{
+	struct regulator_config cfg = {
+		.dev = &s->pdev->dev,
+		.init_data = &as9888_sim_supply_init,
+		.driver_data = s,
+	};
+
+	s->rdev = regulator_register(&s->pdev->dev, &as9888_sim_supply_desc,
+				     &cfg);
+	return PTR_ERR_OR_ZERO(s->rdev);
 }
 
 /* --- I2C ------------------------------------------------------------------ */
@@ -712,8 +800,10 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	seq_printf(sf, "chip_bytes_read %llu\n", st.bytes_read);
 	seq_printf(sf, "chip_bytes_written %llu\n", st.bytes_written);
 	seq_printf(sf, "chip_measurements %llu\n", st.measurements);
+	seq_printf(sf, "chip_magn_measurements %llu\n", st.magn_measurements);
 	seq_printf(sf, "chip_aborted %llu\n", st.aborted);
 	seq_printf(sf, "chip_resets %llu\n", st.resets);
+	seq_printf(sf, "chip_power_offs %llu\n", st.power_offs);
 	return 0;
 }
 
@@ -747,6 +837,34 @@ static const struct file_operations as9888_sim_stats_fops = {
 	.llseek = seq_lseek,
 	.release = single_release,
 };
+
+static int as9888_sim_regs_show(struct seq_file *sf, void *unused)
+{
+	static const u8 cfg_regs[] = {
+		AS9888_REG_INT1EN, AS9888_REG_INT2EN, AS9888_REG_SLCT1,
+		AS9888_REG_SLCT2, AS9888_REG_MS,
+	};
+	u8 reg[ARRAY_SIZE(cfg_regs) + AS9888_TRIM_LEN], val[ARRAY_SIZE(reg)];
+	struct as9888_sim *s = sf->private;
+	unsigned int i, n = 0;
+	unsigned long flags;
+
+	for (i = 0; i < ARRAY_SIZE(cfg_regs); i++)
+		reg[n++] = cfg_regs[i];
+	for (i = 0; i < AS9888_TRIM_LEN; i++)
+		reg[n++] = AS9888_REG_REF1 + i;
+
+	spin_lock_irqsave(&s->lock, flags);
+	as9888_model_advance(&s->model, ktime_get_ns());
+	for (i = 0; i < n; i++)
+		val[i] = as9888_model_peek(&s->model, reg[i]);
+	spin_unlock_irqrestore(&s->lock, flags);
+
+	for (i = 0; i < n; i++)
+		seq_printf(sf, "0x%02x 0x%02x\n", reg[i], val[i]);
+	return 0;
+}
+DEFINE_SHOW_ATTRIBUTE(as9888_sim_regs);
 
 static int as9888_sim_bus_show(struct seq_file *sf, void *unused)
 {
@@ -901,12 +1019,18 @@ static int __init as9888_sim_init(void)
 	gpiod_add_lookup_table(&as9888_sim_lookup);
 #endif
 
+	step = "supply";
+	ret = as9888_sim_add_supply(s);
+	if (ret)
+		goto err_spi;
+
 	s->dir = debugfs_create_dir("as9888_sim", NULL);
 	debugfs_create_file("unit", 0600, s->dir, s, &as9888_sim_unit_fops);
 	debugfs_create_file("present", 0600, s->dir, s,
 			    &as9888_sim_present_fops);
 	debugfs_create_file("stats", 0600, s->dir, s, &as9888_sim_stats_fops);
 	debugfs_create_file("bus", 0400, s->dir, s, &as9888_sim_bus_fops);
+	debugfs_create_file("regs", 0400, s->dir, s, &as9888_sim_regs_fops);
 
 	sim = s;
 	mutex_lock(&s->cfg_lock);
@@ -922,6 +1046,8 @@ static int __init as9888_sim_init(void)
 
 err_debugfs:
 	debugfs_remove_recursive(s->dir);
+	regulator_unregister(s->rdev);
+err_spi:
 #ifndef AS9888_SIM_SWNODE_GPIO
 	gpiod_remove_lookup_table(&as9888_sim_lookup);
 #endif
@@ -958,6 +1084,7 @@ static void __exit as9888_sim_exit(void)
 	mutex_lock(&s->cfg_lock);
 	as9888_sim_del_client(s);
 	mutex_unlock(&s->cfg_lock);
+	regulator_unregister(s->rdev);
 #ifndef AS9888_SIM_SWNODE_GPIO
 	gpiod_remove_lookup_table(&as9888_sim_lookup);
 #endif
