@@ -1,0 +1,31 @@
+# SPDX-License-Identifier: GPL-2.0
+# rstn_open: the reset line is not connected, reset pulses do nothing.
+# The datasheet checks RSTN only in the factory function test (section 7,
+# D11: INT1EN reads back 0x00 after a pulse), which is the daemon's job;
+# the driver pulses RSTN at probe without checking it. The chip has just
+# been powered on, so it is in its reset state anyway and probe works:
+# assert that, and that the pulse really had no effect on this unit.
+set_unit "temperature = 25" "noise = 0"
+check "healthy unit probes" wait_dev 5
+eq "healthy unit: the probe's reset pulse took effect" "$(stat_get chip_resets)" 1
+z_ok=$(cat $DEV/in_accel_z_raw)
+
+n0=$(dmesg | wc -l)
+set_unit "temperature = 25" "noise = 0" "fault = rstn_open"
+check "rstn_open: device probes" wait_dev 5
+eq "rstn_open: the reset pulse had no effect" "$(stat_get chip_resets)" 0
+check "rstn_open: RSTN still requested by the driver, deasserted" \
+	sh -c "grep 'AS9888_RSTN' /sys/kernel/debug/gpio | grep -q 'reset.*out hi'"
+eq "rstn_open: z reads as on the healthy unit" "$(cat $DEV/in_accel_z_raw)" "$z_ok"
+eq "rstn_open: the trim is loaded (REF3 = 0x18 | EREF3[2:0])" \
+	"$(sed -n 's/^0x32 //p' $SIM/regs)" "$(printf '0x%02x' $((0x18 | (0x15 & 7))))"
+check "rstn_open: selftest passes" sh -c "echo 1 > $DEV/selftest && grep -q '^pass' $DEV/selftest"
+C=$(client)
+echo $C > /sys/bus/i2c/drivers/as9888_i2c/unbind
+echo $C > /sys/bus/i2c/drivers/as9888_i2c/bind
+check "rstn_open: unbind/bind works" wait_dev 5
+D=$(dmesg | tail -n +$((n0 + 1)) | grep -i as9888)
+[ -n "$D" ] && echo "$D" | sed 's/^/# /'
+eq "rstn_open: no driver message in the log" "$D" ""
+set_unit "noise = 1"
+check "healthy unit after rstn_open" wait_dev 5

@@ -1,0 +1,47 @@
+# SPDX-License-Identifier: GPL-2.0
+# 50 unbind/bind cycles, 50 reloads of as9888_i2c and 5 of the whole
+# driver (as9888_i2c, as9888_core, as9888_calib), then a kmemleak scan.
+set_unit "noise = 1"
+wait_dev 5
+C=$(client)
+I2C_DRV=/sys/bus/i2c/drivers/as9888_i2c
+
+# repeat N FUNCTION: run FUNCTION N times, print how many runs failed
+# (in a subshell: wait_dev again afterwards for DEV)
+repeat() {
+	_fails=0; _n=0
+	while [ $_n -lt $1 ]; do
+		$2 || _fails=$((_fails + 1))
+		_n=$((_n + 1))
+	done
+	echo $_fails
+}
+# each cycle: the device goes away, and comes back
+unbind_bind() {
+	echo $C > $I2C_DRV/unbind && ! iio_dev > /dev/null &&
+		echo $C > $I2C_DRV/bind && wait_dev 2
+}
+reload_i2c() {
+	rmmod as9888_i2c && ! iio_dev > /dev/null &&
+		insmod $MODDIR/as9888_i2c.ko && wait_dev 2
+}
+reload_driver() {
+	rmmod as9888_i2c && rmmod as9888_core && rmmod as9888_calib &&
+		! grep -qE '^as9888_(i2c|core|calib) ' /proc/modules &&
+		load_driver && wait_dev 2
+}
+uptime_s() { cut -d' ' -f1 /proc/uptime; }
+
+t0=$(uptime_s)
+eq "50 unbind/bind cycles" "$(repeat 50 unbind_bind)" 0
+wait_dev 2
+near "reads after the cycles" "$(cat $DEV/in_accel_z_raw)" 259 10
+t1=$(uptime_s)
+eq "50 reloads of as9888_i2c" "$(repeat 50 reload_i2c)" 0
+t2=$(uptime_s)
+eq "5 reloads of as9888_i2c, as9888_core and as9888_calib" "$(repeat 5 reload_driver)" 0
+wait_dev 2
+near "reads after the reloads" "$(cat $DEV/in_accel_z_raw)" 259 10
+t3=$(uptime_s)
+echo "$t0 $t1 $t2 $t3" | awk '{ printf "# AS9888-METRIC bind_cycles_s=%.1f i2c_reloads_s=%.1f driver_reloads_s=%.1f\n", $2 - $1, $3 - $2, $4 - $3 }'
+leak_check
