@@ -33,6 +33,7 @@
 
 #include "ftest_internal.h"
 #include "iio.h"
+#include "iio_scan.h"
 
 /*
  * Data-ready rate during the test: a filtered accelerometer sample takes
@@ -47,8 +48,6 @@
 #define IIO_SAVED_MAX		32
 #define IIO_NAME_MAX		64
 #define IIO_SCAN_CHANNELS	4
-/* Beyond any adjusted reading: 4096 * (255 + 128) / 256 */
-#define IIO_SELFTEST_ABS_MAX	8192.0
 
 static const char *const calibbias_attr[AS9888_AXES] = {
 	"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
@@ -57,17 +56,6 @@ static const char *const calibbias_attr[AS9888_AXES] = {
 /* The buffer's channels the test uses, in the order of this table */
 static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
 	"in_accel_x", "in_accel_y", "in_accel_z", "in_temp",
-};
-
-/* Where one channel sits in a buffer sample, from its _index and _type */
-struct scan_layout {
-	unsigned int index;
-	unsigned int offset;
-	unsigned int bytes;
-	unsigned int realbits;
-	unsigned int shift;
-	bool is_signed;
-	bool big_endian;
 };
 
 struct saved_attr {
@@ -92,7 +80,7 @@ struct iio_test_dev {
 	const char *scan_dir;
 	char chardev[IIO_PATH_MAX];
 	char trigger[IIO_NAME_MAX];
-	struct scan_layout layout[IIO_SCAN_CHANNELS];
+	struct iio_scan_channel layout[IIO_SCAN_CHANNELS];
 	unsigned int sample_bytes;
 	struct saved_attr saved[IIO_SAVED_MAX];
 	unsigned int n_saved;
@@ -273,34 +261,6 @@ static int iio_step1(struct ftest_ctx *x)
 	return 0;
 }
 
-/* "pass|fail X Y Z" with three decimals; the readings back in Q8 */
-static int parse_selftest(const char *s, bool *pass, int32_t adj_q8[AS9888_AXES])
-{
-	char verdict[8], tail;
-	double v[AS9888_AXES];
-	int axis;
-
-	if (sscanf(s, "%7s %lf %lf %lf %c", verdict, &v[0], &v[1], &v[2],
-		   &tail) != 4)
-		return -EINVAL;
-	if (!strcmp(verdict, "pass"))
-		*pass = true;
-	else if (!strcmp(verdict, "fail"))
-		*pass = false;
-	else
-		return -EINVAL;
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		/* 1/1000 rounding is finer than 1/256: the Q8 value is exact */
-		if (!(v[axis] > -IIO_SELFTEST_ABS_MAX &&
-		      v[axis] < IIO_SELFTEST_ABS_MAX))
-			return -EINVAL;
-		adj_q8[axis] = (int32_t)(v[axis] * AS9888_Q8_ONE +
-					 (v[axis] < 0 ? -0.5 : 0.5));
-	}
-
-	return 0;
-}
-
 static int iio_step2(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
@@ -319,7 +279,7 @@ static int iio_step2(struct ftest_ctx *x)
 	if (ret < 0)
 		return ftest_io_failed(x, "2-15", "selftest result", ret);
 	if (!ftest_judge(x, "2-15", "self-test result readable",
-			 !parse_selftest(val, &pass, adj), "pass|fail X Y Z",
+			 !iio_parse_selftest(val, &pass, adj), "pass|fail X Y Z",
 			 "\"%s\"", val))
 		return 0;
 
@@ -348,31 +308,12 @@ static int iio_step2(struct ftest_ctx *x)
 	return 0;
 }
 
-/* "le:s12/16>>0" */
-static int parse_type(const char *s, struct scan_layout *l)
-{
-	char endian[3] = "", sign;
-	unsigned int storage;
-
-	if (sscanf(s, "%2c:%c%u/%u>>%u", endian, &sign, &l->realbits,
-		   &storage, &l->shift) != 5 || (sign != 's' && sign != 'u') ||
-	    (strcmp(endian, "le") && strcmp(endian, "be")) ||
-	    (storage != 8 && storage != 16 && storage != 32) ||
-	    !l->realbits || l->realbits + l->shift > storage)
-		return -EINVAL;
-	l->is_signed = sign == 's';
-	l->big_endian = !strcmp(endian, "be");
-	l->bytes = storage / 8;
-
-	return 0;
-}
-
 /* Only scan_channel[] enabled; their places in a sample */
 static int setup_scan(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
 	char path[IIO_PATH_MAX], name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
-	unsigned int i, j, offset = 0, order[IIO_SCAN_CHANNELS];
+	unsigned int i;
 	struct dirent *de;
 	DIR *dir;
 	int ret = 0;
@@ -396,7 +337,7 @@ static int setup_scan(struct ftest_ctx *x)
 		return ftest_io_failed(x, "3-1", "scan elements", ret);
 
 	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
-		struct scan_layout *l = &d->layout[i];
+		struct iio_scan_channel *l = &d->layout[i];
 
 		snprintf(name, sizeof(name), "%s/%s_en", d->scan_dir, scan_channel[i]);
 		ret = change_attr(d, name, "1");
@@ -411,29 +352,15 @@ static int setup_scan(struct ftest_ctx *x)
 		if (!ret && iio_read_attr(d->dir, name, val, sizeof(val)) <= 0)
 			ret = -EIO;
 		if (!ret)
-			ret = parse_type(val, l);
+			ret = iio_scan_parse_type(val, l);
 		if (ret)
 			return ftest_io_failed(x, "3-1", scan_channel[i], ret);
-		order[i] = i;
 	}
 
-	/* in a sample the channels follow their index, each aligned */
-	for (i = 1; i < IIO_SCAN_CHANNELS; i++)
-		for (j = i; j > 0 && d->layout[order[j - 1]].index >
-				     d->layout[order[j]].index; j--) {
-			unsigned int t = order[j];
-
-			order[j] = order[j - 1];
-			order[j - 1] = t;
-		}
-	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
-		struct scan_layout *l = &d->layout[order[i]];
-
-		offset = (offset + l->bytes - 1) / l->bytes * l->bytes;
-		l->offset = offset;
-		offset += l->bytes;
-	}
-	d->sample_bytes = offset;
+	ret = iio_scan_layout(d->layout, IIO_SCAN_CHANNELS);
+	if (ret < 0)
+		return ftest_io_failed(x, "3-1", "scan element indices", ret);
+	d->sample_bytes = (unsigned int)ret;
 
 	return 0;
 }
@@ -464,23 +391,6 @@ static int iio_level_setup(struct ftest_ctx *x)
 		return ftest_io_failed(x, "3-1", "buffer set-up", ret);
 
 	return 0;
-}
-
-static int32_t channel_value(const struct scan_layout *l, const uint8_t *sample)
-{
-	const uint8_t *p = sample + l->offset;
-	uint32_t v = 0;
-	unsigned int i;
-
-	for (i = 0; i < l->bytes; i++)
-		v |= (uint32_t)p[l->big_endian ? i : l->bytes - 1 - i]
-		     << (8 * (l->bytes - 1 - i));
-	v >>= l->shift;
-	v &= l->realbits == 32 ? UINT32_MAX : (1U << l->realbits) - 1;
-	if (l->is_signed && l->realbits < 32 && (v & (1U << (l->realbits - 1))))
-		return (int32_t)(v | ~((1U << l->realbits) - 1));
-
-	return (int32_t)v;
 }
 
 /* Read @n samples from @fd into @r, at most until @deadline */
@@ -516,8 +426,8 @@ static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
 			continue;
 		have = 0;
 		for (axis = 0; axis < AS9888_AXES; axis++)
-			s.acc[axis] = (int16_t)channel_value(&d->layout[axis], buf);
-		s.tmps = (uint8_t)channel_value(&d->layout[AS9888_AXES], buf);
+			s.acc[axis] = (int16_t)iio_scan_value(&d->layout[axis], buf);
+		s.tmps = (uint8_t)iio_scan_value(&d->layout[AS9888_AXES], buf);
 		level_run_add(r, &s);
 	}
 

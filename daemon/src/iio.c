@@ -11,6 +11,9 @@
 #include "iio.h"
 #include "session.h"
 
+/* Beyond any adjusted reading: 4096 * (255 + 128) / 256 */
+#define IIO_SELFTEST_ABS_MAX	8192.0
+
 
 const char *iio_sysfs_root(void)
 {
@@ -195,6 +198,33 @@ int iio_apply_record(const char *dir, const struct calib_record *rec)
 		fprintf(stderr, "as9888-calibd: %s/in_accel_calibration: cannot set \"%s\": %s\n",
 			dir, want, strerror(-ret));
 		return ret;
+	}
+
+	return 0;
+}
+
+int iio_parse_selftest(const char *s, bool *pass, int32_t adj_q8[AS9888_AXES])
+{
+	char verdict[8], tail;
+	double v[AS9888_AXES];
+	int axis;
+
+	if (sscanf(s, "%7s %lf %lf %lf %c", verdict, &v[0], &v[1], &v[2],
+		   &tail) != 4)
+		return -EINVAL;
+	if (!strcmp(verdict, "pass"))
+		*pass = true;
+	else if (!strcmp(verdict, "fail"))
+		*pass = false;
+	else
+		return -EINVAL;
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		/* 1/1000 rounding is finer than 1/256: the Q8 value is exact */
+		if (!(v[axis] > -IIO_SELFTEST_ABS_MAX &&
+		      v[axis] < IIO_SELFTEST_ABS_MAX))
+			return -EINVAL;
+		adj_q8[axis] = (int32_t)(v[axis] * AS9888_Q8_ONE +
+					 (v[axis] < 0 ? -0.5 : 0.5));
 	}
 
 	return 0;

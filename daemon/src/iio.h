@@ -8,6 +8,7 @@
 #ifndef AS9888_IIO_H
 #define AS9888_IIO_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -42,6 +43,13 @@ int iio_write_attr(const char *dir, const char *name, const char *value);
  * "as9888-eeprom<N>", a sibling of iio:device<N> below the bus device.
  */
 int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN]);
+
+/*
+ * The selftest attribute's "pass|fail X Y Z" (readings with three
+ * decimals): the verdict and the readings back in Q8, exactly (1/1000 is
+ * finer than 1/256). 0 or -EINVAL.
+ */
+int iio_parse_selftest(const char *s, bool *pass, int32_t adj_q8[AS9888_AXES]);
 
 /*
  * Write @rec's DAC values and level data into the device at @dir (no
