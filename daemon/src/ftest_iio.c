@@ -17,9 +17,10 @@
  * Of the pin checks of D11, INT1 is judged by the data-ready trigger
  * delivering samples; RSTN and INT2 need the pins, which the driver owns or
  * does not use: they are reported as skipped (run --backend raw with the
- * driver unbound for them). Every attribute the test changes is saved first and put back
- * by finish(), so the device is left as it was found; a command that wants
- * the new calibration applied writes it afterwards (iio_apply_record()).
+ * driver unbound for them). Every attribute the test changes is saved
+ * first and put back by finish(), so the device is left as it was found; a
+ * command that wants the new calibration applied writes it afterwards
+ * (iio_apply_record()).
  */
 #include <errno.h>
 #include <fcntl.h>
