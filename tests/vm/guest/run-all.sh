@@ -8,7 +8,7 @@ for t in /tests/tests/*.sh; do
 	if [ -s /tests/only ] && ! grep -qx "$(basename "$t" .sh)" /tests/only; then
 		continue
 	fi
-	diag "--- $(basename "$t")"
+	diag "--- $(basename "$t") (uptime $(cut -d' ' -f1 /proc/uptime) s)"
 	. "$t"
 done
 leak_check
