@@ -346,6 +346,10 @@ static struct regulator_init_data as9888_sim_supply_init = {
 	.consumer_supplies = as9888_sim_consumers,
 };
 
+#ifdef CONFIG_LOCKDEP
+static struct lock_class_key as9888_sim_supply_work_key;
+#endif
+
 static int as9888_sim_add_supply(struct as9888_sim *s)
 {
 	struct regulator_config cfg = {
@@ -356,7 +360,23 @@ static int as9888_sim_add_supply(struct as9888_sim *s)
 
 	s->rdev = regulator_register(&s->pdev->dev, &as9888_sim_supply_desc,
 				     &cfg);
-	return PTR_ERR_OR_ZERO(s->rdev);
+	if (IS_ERR(s->rdev))
+		return PTR_ERR(s->rdev);
+
+#ifdef CONFIG_LOCKDEP
+	/*
+	 * Every device's runtime PM work shares one lockdep class. The
+	 * chip's runtime suspend work disables this regulator (taking
+	 * regulator_list_mutex), and regulator_unregister() flushes the
+	 * regulator device's own runtime PM work (6.1: pm_runtime_remove())
+	 * with regulator_list_mutex held: a false circular dependency. The
+	 * regulator device never runs runtime PM work: its own class.
+	 */
+	lockdep_init_map(&s->rdev->dev.power.work.lockdep_map,
+			 "as9888_sim_supply_pm_work", &as9888_sim_supply_work_key,
+			 0);
+#endif
+	return 0;
 }
 
 /* --- I2C ------------------------------------------------------------------ */
