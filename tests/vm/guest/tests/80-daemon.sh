@@ -2,6 +2,8 @@
 # as9888-calibd: a factory record made for this unit, restored through the
 # driver (restore --backend iio), also after a driver reload; a record of
 # another chip is refused.
+load_sim
+load_driver
 U="temperature = 25
 offset = 40 -25 60
 noise = 0.5
