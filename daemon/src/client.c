@@ -5,14 +5,22 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/un.h>
 #include <unistd.h>
 
 #include "commands.h"
 
+/*
+ * Longest wait for the answer: a recalibration waits up to the stability
+ * timeout (10 s) and then measures; a daemon silent for this long is stuck.
+ */
+#define CLIENT_ANSWER_TIMEOUT_S	120
+
 int cmd_request(const struct cli_opts *o)
 {
 	struct sockaddr_un addr = { .sun_family = AF_UNIX };
+	struct timeval tv = { .tv_sec = CLIENT_ANSWER_TIMEOUT_S };
 	char buf[4096];
 	ssize_t n;
 	int fd;
@@ -31,10 +39,15 @@ int cmd_request(const struct cli_opts *o)
 			close(fd);
 		return EXIT_FAILURE;
 	}
+	setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
 	dprintf(fd, "%s%s\n", o->request, o->json ? " --json" : "");
 	shutdown(fd, SHUT_WR);
 	while ((n = read(fd, buf, sizeof(buf))) > 0)
 		fwrite(buf, 1, (size_t)n, stdout);
+	if (n < 0)
+		fprintf(stderr, "as9888-calibd: no answer from the daemon at %s: %s\n",
+			o->socket_path,
+			errno == EAGAIN ? "timed out" : strerror(errno));
 	close(fd);
 
 	return n < 0 ? EXIT_FAILURE : EXIT_SUCCESS;
