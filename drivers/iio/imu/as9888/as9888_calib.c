@@ -180,8 +180,7 @@ bool as9888_selftest_window_ok(int axis, s32 adj_q8)
 		return false;
 	}
 
-	return adj_q8 >= lo * (1 << AS9888_Q8_SHIFT) &&
-	       adj_q8 <= hi * (1 << AS9888_Q8_SHIFT);
+	return adj_q8 >= lo * AS9888_Q8_ONE && adj_q8 <= hi * AS9888_Q8_ONE;
 }
 EXPORT_SYMBOL_NS_GPL(as9888_selftest_window_ok, AS9888_NS);
 

@@ -86,7 +86,6 @@
 #define AS9888_ACC_MAX			2047
 
 /* Adjusted magnetometer readings are in 1/256 LSB (Q8) */
-#define AS9888_Q8_SHIFT			8
 #define AS9888_Q8_ONE			256
 
 /* Application note, step 2: self-test windows after sensitivity adjustment */

@@ -81,8 +81,6 @@
 #define AS9888_G_NANO			9806650000LL
 #define AS9888_NANO			1000000000LL
 #define AS9888_MILLI			1000
-/* as9888_mag_adjust_q8() returns 1/256 LSB */
-#define AS9888_Q8_ONE			256
 
 /*
  * Temperature, datasheet section 5: T = (176 - TMPS) / 1.6 degC, i.e.
