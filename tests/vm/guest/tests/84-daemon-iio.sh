@@ -125,7 +125,9 @@ check "request recalibrate through the daemon" \
 check "request check afterwards: no recalibration needed" \
 	sh -c "$CALIBD request check --socket /tmp/iio/sock | grep -q 'No recalibration needed'"
 kill -TERM $DPID84
-wait $DPID84 2>/dev/null
+_i=0
+while kill -0 $DPID84 2>/dev/null && [ $_i -lt 50 ]; do sleep 0.1; _i=$((_i + 1)); done
+check_not "SIGTERM stops the daemon" kill -0 $DPID84
 
 # Each fault fails the test at its step (or is out of the driver's sight)
 for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
