@@ -390,6 +390,24 @@ static void as9888_test_selftest(struct kunit *test)
 	KUNIT_EXPECT_EQ(test, as9888_selftest_ok(c->axis, c->h, c->ehc), c->ok);
 }
 
+/* The windows alone, on adjusted Q8 readings: both edges belong to them */
+static void as9888_test_selftest_window(struct kunit *test)
+{
+	KUNIT_EXPECT_TRUE(test, as9888_selftest_window_ok(0, -100 * AS9888_Q8_ONE));
+	KUNIT_EXPECT_FALSE(test,
+			   as9888_selftest_window_ok(0, -100 * AS9888_Q8_ONE - 1));
+	KUNIT_EXPECT_TRUE(test, as9888_selftest_window_ok(1, 100 * AS9888_Q8_ONE));
+	KUNIT_EXPECT_FALSE(test,
+			   as9888_selftest_window_ok(1, 100 * AS9888_Q8_ONE + 1));
+	KUNIT_EXPECT_TRUE(test, as9888_selftest_window_ok(2, 300 * AS9888_Q8_ONE));
+	KUNIT_EXPECT_FALSE(test,
+			   as9888_selftest_window_ok(2, 300 * AS9888_Q8_ONE - 1));
+	KUNIT_EXPECT_TRUE(test, as9888_selftest_window_ok(2, 1000 * AS9888_Q8_ONE));
+	KUNIT_EXPECT_FALSE(test,
+			   as9888_selftest_window_ok(2, 1000 * AS9888_Q8_ONE + 1));
+	KUNIT_EXPECT_FALSE(test, as9888_selftest_window_ok(-1, 0));
+}
+
 /* 6.3, 6.4: St(t) = St_RT * (1 + Kste / 100 * (t - t_RT)) */
 struct as9888_st_case {
 	const char *name;
@@ -845,6 +863,7 @@ static struct kunit_case as9888_calib_test_cases[] = {
 	KUNIT_CASE(as9888_test_temperature_rounding),
 	KUNIT_CASE_PARAM(as9888_test_mag, as9888_mag_gen_params),
 	KUNIT_CASE_PARAM(as9888_test_selftest, as9888_selftest_gen_params),
+	KUNIT_CASE(as9888_test_selftest_window),
 	KUNIT_CASE_PARAM(as9888_test_sensitivity, as9888_st_gen_params),
 	KUNIT_CASE(as9888_test_sensitivity_bad_trim),
 	KUNIT_CASE_PARAM(as9888_test_offset_level, as9888_level_gen_params),
