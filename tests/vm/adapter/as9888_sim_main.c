@@ -625,6 +625,8 @@ static int as9888_sim_add_client(struct as9888_sim *s)
 
 	if (s->client || s->spi)
 		return 0;
+	/* a device (re)appears on a freshly powered chip */
+	as9888_sim_power_on(s);
 	irq = irq_create_mapping(s->domain, AS9888_SIM_INT1);
 	if (!irq)
 		return -ENXIO;
@@ -722,7 +724,6 @@ static ssize_t as9888_sim_unit_write(struct file *file, const char __user *ubuf,
 	s->unit = unit;
 	kfree(s->unit_text);
 	s->unit_text = text;
-	as9888_sim_power_on(s);
 	ret = as9888_sim_add_client(s);
 	mutex_unlock(&s->cfg_lock);
 	return ret ?: count;
@@ -761,12 +762,10 @@ static ssize_t as9888_sim_present_write(struct file *file,
 	if (ret)
 		return ret;
 	mutex_lock(&s->cfg_lock);
-	if (!on) {
-		as9888_sim_del_client(s);
-	} else if (!s->client) {
-		as9888_sim_power_on(s);
+	if (on)
 		ret = as9888_sim_add_client(s);
-	}
+	else
+		as9888_sim_del_client(s);
 	mutex_unlock(&s->cfg_lock);
 	return ret ?: count;
 }
@@ -1054,7 +1053,6 @@ static int __init as9888_sim_init(void)
 
 	sim = s;
 	mutex_lock(&s->cfg_lock);
-	as9888_sim_power_on(s);
 	step = "device";
 	ret = as9888_sim_add_client(s);
 	mutex_unlock(&s->cfg_lock);
