@@ -40,8 +40,7 @@
  * Data-ready rate during the test: a filtered accelerometer sample takes
  * 4.8 ms plus two bus transfers, so 100 Hz leaves room on a slow bus.
  */
-#define IIO_TEST_RATE_HZ	"100"
-#define IIO_TEST_RATE		100
+#define IIO_TEST_RATE_HZ	100
 /* Buffer length during the test, in samples */
 #define IIO_TEST_BUFFER_LEN	"256"
 /* How late the last of a run's samples may be */
@@ -369,7 +368,10 @@ static int setup_scan(struct ftest_ctx *x)
 static int iio_level_setup(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
+	char rate[IIO_NAME_MAX];
 	int ret;
+
+	snprintf(rate, sizeof(rate), "%d", IIO_TEST_RATE_HZ);
 
 	ret = change_attr(d, "in_accel_filter_low_pass_en", x->o->lpf ? "1" : "0");
 	if (ret)
@@ -387,7 +389,7 @@ static int iio_level_setup(struct ftest_ctx *x)
 	if (!ret)
 		ret = change_attr(d, "buffer/length", IIO_TEST_BUFFER_LEN);
 	if (!ret)
-		ret = change_attr(d, "sampling_frequency", IIO_TEST_RATE_HZ);
+		ret = change_attr(d, "sampling_frequency", rate);
 	if (ret)
 		return ftest_io_failed(x, "3-1", "buffer set-up", ret);
 
@@ -440,7 +442,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 {
 	struct iio_test_dev *d = x->dev;
 	uint64_t start = iio_now_ns(x);
-	uint64_t deadline = start + (uint64_t)n * 1000000000ULL / IIO_TEST_RATE +
+	uint64_t deadline = start + (uint64_t)n * 1000000000ULL / IIO_TEST_RATE_HZ +
 			    IIO_SAMPLE_SLACK_MS * NS_PER_MS;
 	int fd, ret;
 
