@@ -4,7 +4,9 @@
  * double-precision reference, over every input space small enough to
  * enumerate. Each test prints the worst error it found and fails above the
  * bar of the foundation issue: 1e-4 relative for sensitivities, 0.5 LSB for
- * offsets, DACopt identical but at exact rint ties.
+ * offsets, DACopt identical but at exact rint ties; and for the driver's
+ * compensated readings, 0.5 output LSB (the final rounding) with the raw
+ * reading recovered exactly from every one of them.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -21,6 +23,11 @@
 
 #define SENS_REL_BAR	1e-4
 #define OFFSET_LSB_BAR	0.5
+/*
+ * Compensated output: its final rint (0.5 output LSB, an eighth of a raw
+ * LSB at 256 LSB/g) plus the Q16 steps of Ot, St and the DAC step.
+ */
+#define OUT_LSB_BAR	0.501
 
 static double q16(s64 v)
 {
@@ -180,12 +187,100 @@ static void sweep_dac(void **state)
 	assert_int_equal(mismatches, 0);
 }
 
+/*
+ * The driver's compensated reading of one axis: every raw value at every
+ * valid TMPS code (-30..85 degC), for every sensitivity coefficient, both
+ * ends of the sensitivity detail, a DAC away from the factory value and a
+ * calibration away from t_RT. Bar: OUT_LSB_BAR from the double reference,
+ * and the raw value back exactly.
+ */
+static void sweep_compensation(void **state)
+{
+	static const int details[] = { 0x10, 0x0f };	/* -16 and +15 */
+	static const struct { s32 offset_q16, t_mdegc; } cals[] = {
+		{ 0, 23750 },
+		{ -123 * AS9888_Q16_ONE - 4321, 31875 },
+	};
+	const u8 eaga = 0x80 | 0x40 | 28, eadt = 0x38, eada = 0x0d;
+	const u8 et1 = 0x88, et2 = 0x50, eref3 = 0x15;
+	double worst = 0.0;
+	unsigned long count = 0, lost = 0;
+	int kste, d, lin_shift, tmps, raw;
+	unsigned int c;
+
+	for (kste = 0; kste < 8; kste++)
+	for (d = 0; d < 2; d++)
+	for (lin_shift = -20; lin_shift <= 20; lin_shift += 40)
+	for (c = 0; c < 2; c++) {
+		u8 ee_raw[AS9888_EEPROM_LEN] = { 0 };
+		u8 gtd = kste << 5 | details[d];
+		struct as9888_accel_cal cal = { .t_mdegc = cals[c].t_mdegc };
+		struct as9888_eeprom ee;
+		double kote, ot_ref;
+		u8 da;
+		int axis;
+
+		for (axis = 0; axis < AS9888_AXES; axis++) {
+			ee_raw[AS9888_EE_EAGA(axis)] = eaga;
+			ee_raw[AS9888_EE_EADT(axis)] = eadt;
+			ee_raw[AS9888_EE_EADA(axis)] = eada;
+			ee_raw[AS9888_EE_EAGTD(axis)] = gtd;
+		}
+		ee_raw[AS9888_EE_EREF3] = eref3;
+		ee_raw[AS9888_EE_ET1] = et1;
+		ee_raw[AS9888_EE_ET2] = et2;
+		assert_int_equal(as9888_eeprom_decode(ee_raw, &ee), 0);
+		cal.offset_q16[0] = cals[c].offset_q16;
+
+		da = ref_lin2dac(ee.axis[0].ga,
+				 ref_dac2lin(ee.axis[0].ga, eada) + lin_shift);
+		kote = ref_kote(eaga, eadt, et1, et2);
+		/* the offset the DAC in use gives, 6.6 */
+		ot_ref = q16(cal.offset_q16[0]) +
+			 (ref_dac2lin(ee.axis[0].ga, da) -
+			  ref_dac2lin(ee.axis[0].ga, eada)) * 2048.0 /
+			 ((eaga & 0x3f) + 16);
+
+		for (tmps = AS9888_TMPS_MIN; tmps <= AS9888_TMPS_MAX; tmps++) {
+			double t = ref_tmps_to_degc(tmps);
+			double st = ref_sensitivity(gtd, eref3, t);
+			double ot = ref_offset(kote, ot_ref, cal.t_mdegc / 1000.0, t);
+			s32 ot_q16, st_q16;
+
+			assert_int_equal(as9888_accel_correction(&ee, &cal, 0, da,
+					as9888_tmps_to_mdegc(tmps), &ot_q16,
+					&st_q16), 0);
+			for (raw = AS9888_ACC_MIN; raw <= AS9888_ACC_MAX; raw++) {
+				double ref = (raw - ot) / st * AS9888_ACC_OUT_PER_G;
+				s16 out, back;
+				double err;
+
+				if (as9888_accel_compensate(raw, ot_q16, st_q16, &out))
+					continue;	/* beyond s16, clamped */
+				err = fabs(out - ref);
+				if (err > worst)
+					worst = err;
+				if (as9888_accel_uncompensate(out, ot_q16, st_q16, &back) ||
+				    back != raw)
+					lost++;
+				count++;
+			}
+		}
+	}
+	print_message("compensation: %lu cases, worst error %.6f output LSB (bar %.3f), %lu raw values not recovered\n",
+		      count, worst, OUT_LSB_BAR, lost);
+	assert_true(count > 0);
+	assert_true(worst <= OUT_LSB_BAR);
+	assert_int_equal(lost, 0);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(sweep_sensitivity),
 		cmocka_unit_test(sweep_offset),
 		cmocka_unit_test(sweep_dac),
+		cmocka_unit_test(sweep_compensation),
 	};
 
 	return cmocka_run_group_tests_name("calib-sweep", tests, NULL, NULL);

@@ -47,6 +47,7 @@
 #define AS9888_KOTE_NUM_MAX		(256 * AS9888_KOTE_NUM)
 #define AS9888_KOTE_DEN_MAX		(255 * AS9888_KOTE_DEN)
 #define AS9888_UG_PER_G			1000000
+#define AS9888_MICRO			1000000
 /* Largest sensitivity accepted by the estimators, LSB/g in Q16 */
 #define AS9888_ST_Q16_MAX		(1024 * AS9888_Q16_ONE)
 #define AS9888_ACC_MEAN_Q16_MAX		(32768LL * AS9888_Q16_ONE)
@@ -326,6 +327,239 @@ int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug)
 	return 0;
 }
 EXPORT_SYMBOL_NS_GPL(as9888_accel_ug, AS9888_NS);
+
+/**
+ * as9888_offset_dac_shift_q16() - an offset as another DAC value gives it
+ * @trim: the axis' decoded EEPROM data (its gain register value)
+ * @ot_q16: the offset measured with DAC register value @from_da, Q16
+ * @from_da: the DAC register value @ot_q16 was measured with
+ * @to_da: another DAC register value
+ * @out_q16: the offset the axis has with @to_da, Q16
+ *
+ * One linear DAC code moves the output by as9888_dac_step_q16() in the
+ * direction of the code (section 6.6), so the offset moves by the change
+ * of the linear code times that step.
+ *
+ * Return: 0, -EINVAL for an invalid DAC value, -ERANGE when the result
+ * does not fit.
+ */
+int as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim,
+				s32 ot_q16, u8 from_da, u8 to_da, s32 *out_q16)
+{
+	s64 out;
+
+	if (!as9888_dac_valid(from_da) || !as9888_dac_valid(to_da))
+		return -EINVAL;
+
+	out = (s64)ot_q16 + (s64)(as9888_dac2lin(trim->ga, to_da) -
+				  as9888_dac2lin(trim->ga, from_da)) *
+			    as9888_dac_step_q16(trim->ga);
+	if (!as9888_in_range(out, S32_MIN, S32_MAX))
+		return -ERANGE;
+
+	*out_q16 = (s32)out;
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_offset_dac_shift_q16, AS9888_NS);
+
+/**
+ * as9888_accel_cal_from_level() - the calibration a level test gives
+ * @ee: the decoded EEPROM
+ * @a_mean_q16: mean raw level reading A per axis, Q16
+ * @t_level_mdegc: the level-test temperature t_L
+ * @g: the gravity direction during the level test
+ * @da: the DAC register values the level test ran with
+ * @cal: the calibration: Ot_L = A + St(t_L) * G per axis (6.5), referred
+ *	 to the factory DAC values, at t_L
+ *
+ * Return: 0, -EINVAL or -ERANGE for inputs out of range.
+ */
+int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
+				const s32 a_mean_q16[AS9888_AXES],
+				s32 t_level_mdegc, const s8 g[AS9888_AXES],
+				const u8 da[AS9888_AXES],
+				struct as9888_accel_cal *cal)
+{
+	s32 st_q16, ot_l_q16, ref_q16;
+	int axis, ret;
+
+	if (!as9888_in_range(t_level_mdegc, as9888_tmps_to_mdegc(AS9888_TMPS_MAX),
+			     as9888_tmps_to_mdegc(AS9888_TMPS_MIN)))
+		return -ERANGE;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		const struct as9888_axis_trim *trim = &ee->axis[axis];
+
+		ret = as9888_sensitivity_q16(trim, ee->t_rt_mdegc,
+					     t_level_mdegc, &st_q16);
+		if (ret)
+			return ret;
+		ret = as9888_offset_level_q16(a_mean_q16[axis], st_q16, g[axis],
+					      &ot_l_q16);
+		if (ret)
+			return ret;
+		ret = as9888_offset_dac_shift_q16(trim, ot_l_q16, da[axis],
+						  trim->da, &ref_q16);
+		if (ret)
+			return ret;
+		if (!as9888_in_range(ref_q16, -AS9888_CAL_OFFSET_MAX_Q16,
+				     AS9888_CAL_OFFSET_MAX_Q16))
+			return -ERANGE;
+		cal->offset_q16[axis] = ref_q16;
+	}
+	cal->t_mdegc = t_level_mdegc;
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_accel_cal_from_level, AS9888_NS);
+
+/**
+ * as9888_accel_correction() - offset and sensitivity of one axis now
+ * @ee: the decoded EEPROM
+ * @cal: the loaded calibration
+ * @axis: 0..2 for X..Z
+ * @da: the DAC register value of the axis
+ * @t_mdegc: the temperature of the sample
+ * @ot_q16: the offset Ot(t) with @da (6.5), Q16
+ * @st_q16: the sensitivity St(t) (6.4), Q16
+ *
+ * Ot(t) = Kote * (t - t_cal) + offset_cal, moved from the factory DAC
+ * value to @da.
+ *
+ * Return: 0, -EINVAL or -ERANGE for inputs out of range.
+ */
+int as9888_accel_correction(const struct as9888_eeprom *ee,
+			    const struct as9888_accel_cal *cal, int axis,
+			    u8 da, s32 t_mdegc, s32 *ot_q16, s32 *st_q16)
+{
+	const struct as9888_axis_trim *trim;
+	s32 ref_q16;
+	int ret;
+
+	if (axis < 0 || axis >= AS9888_AXES ||
+	    !as9888_in_range(cal->offset_q16[axis], -AS9888_CAL_OFFSET_MAX_Q16,
+			     AS9888_CAL_OFFSET_MAX_Q16))
+		return -EINVAL;
+	trim = &ee->axis[axis];
+
+	ret = as9888_offset_q16(trim, cal->offset_q16[axis], cal->t_mdegc,
+				t_mdegc, &ref_q16);
+	if (ret)
+		return ret;
+	ret = as9888_offset_dac_shift_q16(trim, ref_q16, trim->da, da, ot_q16);
+	if (ret)
+		return ret;
+
+	return as9888_sensitivity_q16(trim, ee->t_rt_mdegc, t_mdegc, st_q16);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_accel_correction, AS9888_NS);
+
+/**
+ * as9888_accel_compensate() - a raw reading on the constant output scale
+ * @raw: raw accelerometer sample
+ * @ot_q16: offset at the temperature of the sample, Q16
+ * @st_q16: sensitivity at that temperature, Q16, > 0
+ * @out: rint((raw - Ot(t)) / St(t) * AS9888_ACC_OUT_PER_G) (6.7)
+ *
+ * One output step is St(t) / AS9888_ACC_OUT_PER_G raw LSB, less than 0.4
+ * at every temperature the chip reports, so as9888_accel_uncompensate()
+ * gets @raw back exactly.
+ *
+ * Return: 0, -EINVAL for a sensitivity <= 0, or -ERANGE when the value
+ * is beyond the s16 output range (@out then holds the nearer limit).
+ */
+int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out)
+{
+	s64 a;
+
+	if (!as9888_in_range(st_q16, 1, AS9888_ST_Q16_MAX))
+		return -EINVAL;
+
+	/* |(raw * 2^16 - ot) * 1024| < 2^(16 + 32 + 10) */
+	a = as9888_div_round_s64(((s64)raw * AS9888_Q16_ONE - ot_q16) *
+				 AS9888_ACC_OUT_PER_G, st_q16);
+	*out = (s16)clamp_t(s64, a, AS9888_ACC_OUT_MIN, AS9888_ACC_OUT_MAX);
+
+	return as9888_in_range(a, AS9888_ACC_OUT_MIN, AS9888_ACC_OUT_MAX) ?
+	       0 : -ERANGE;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_accel_compensate, AS9888_NS);
+
+/**
+ * as9888_accel_uncompensate() - the raw reading behind a compensated one
+ * @out: a value of as9888_accel_compensate() that was not clamped
+ * @ot_q16: the offset it was compensated with, Q16
+ * @st_q16: the sensitivity it was compensated with, Q16, > 0
+ * @raw: rint(out * St(t) / AS9888_ACC_OUT_PER_G + Ot(t))
+ *
+ * Exact inverse of as9888_accel_compensate() for every raw reading of the
+ * chip while St(t) < AS9888_ACC_OUT_PER_G LSB/g: the output was rounded by
+ * at most half a step, which is then less than half a raw LSB.
+ *
+ * Return: 0, -EINVAL for a sensitivity <= 0, -ERANGE for an output at a
+ * limit (it may have been clamped) or a raw value the chip cannot give.
+ */
+int as9888_accel_uncompensate(s16 out, s32 ot_q16, s32 st_q16, s16 *raw)
+{
+	s64 r;
+
+	if (!as9888_in_range(st_q16, 1, AS9888_ST_Q16_MAX))
+		return -EINVAL;
+	if (out <= AS9888_ACC_OUT_MIN || out >= AS9888_ACC_OUT_MAX)
+		return -ERANGE;
+
+	r = as9888_div_round_s64((s64)out * st_q16 +
+				 (s64)ot_q16 * AS9888_ACC_OUT_PER_G,
+				 (s64)AS9888_ACC_OUT_PER_G * AS9888_Q16_ONE);
+	if (!as9888_in_range(r, AS9888_ACC_MIN, AS9888_ACC_MAX))
+		return -ERANGE;
+
+	*raw = (s16)r;
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_accel_uncompensate, AS9888_NS);
+
+/**
+ * as9888_q16_to_micro() - a Q16 value in millionths, rounded to nearest
+ * @q16: the value
+ *
+ * A millionth is finer than 2^-16, so as9888_micro_to_q16() gets @q16
+ * back exactly: this is how Q16 values cross sysfs.
+ *
+ * Return: rint(@q16 * 10^6 / 2^16).
+ */
+s64 as9888_q16_to_micro(s32 q16)
+{
+	return as9888_div_round_s64((s64)q16 * AS9888_MICRO, AS9888_Q16_ONE);
+}
+EXPORT_SYMBOL_NS_GPL(as9888_q16_to_micro, AS9888_NS);
+
+/**
+ * as9888_micro_to_q16() - millionths to Q16, rounded to nearest
+ * @micro: the value in millionths
+ * @q16: rint(@micro * 2^16 / 10^6)
+ *
+ * Return: 0, or -ERANGE when the value does not fit in Q16.
+ */
+int as9888_micro_to_q16(s64 micro, s32 *q16)
+{
+	s64 q;
+
+	/* |micro| < 2^31 * 10^6 / 2^16 < 2^36 keeps the product in range */
+	if (!as9888_in_range(micro, -(1LL << 36), 1LL << 36))
+		return -ERANGE;
+
+	q = as9888_div_round_s64(micro * AS9888_Q16_ONE, AS9888_MICRO);
+	if (!as9888_in_range(q, S32_MIN, S32_MAX))
+		return -ERANGE;
+
+	*q16 = (s32)q;
+
+	return 0;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_micro_to_q16, AS9888_NS);
 
 /**
  * as9888_mean_q16() - mean of n s16 samples in Q16, rounded to nearest

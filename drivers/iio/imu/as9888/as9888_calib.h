@@ -205,6 +205,48 @@ int as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
 int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug);
 int as9888_mean_q16(s64 sum, u32 n, s32 *mean_q16);
 
+/*
+ * Compensated accelerometer output (6.7 on a constant scale): what the
+ * driver returns for every accelerometer reading.
+ */
+#define AS9888_ACC_OUT_PER_G		1024
+#define AS9888_ACC_OUT_MIN		(-32768)
+#define AS9888_ACC_OUT_MAX		32767
+/* Largest calibration offset accepted, raw LSB (Q16: +-2^29) */
+#define AS9888_CAL_OFFSET_MAX_LSB	8192
+#define AS9888_CAL_OFFSET_MAX_Q16	(AS9888_CAL_OFFSET_MAX_LSB * AS9888_Q16_ONE)
+
+/**
+ * struct as9888_accel_cal - the accelerometer calibration
+ * @offset_q16:	offset per axis at @t_mdegc, Q16 raw LSB, as the axis reads
+ *		it with its factory DAC value (EAxDA); the DAC value in use
+ *		is accounted for when the offset is applied
+ * @t_mdegc:	the temperature of @offset_q16 (t_L of a level test)
+ *
+ * Without a level test: zero offsets at t_RT, the factory's state.
+ */
+struct as9888_accel_cal {
+	s32 offset_q16[AS9888_AXES];
+	s32 t_mdegc;
+};
+
+int as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim,
+				s32 ot_q16, u8 from_da, u8 to_da, s32 *out_q16);
+int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
+				const s32 a_mean_q16[AS9888_AXES],
+				s32 t_level_mdegc, const s8 g[AS9888_AXES],
+				const u8 da[AS9888_AXES],
+				struct as9888_accel_cal *cal);
+int as9888_accel_correction(const struct as9888_eeprom *ee,
+			    const struct as9888_accel_cal *cal, int axis,
+			    u8 da, s32 t_mdegc, s32 *ot_q16, s32 *st_q16);
+int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out);
+int as9888_accel_uncompensate(s16 out, s32 ot_q16, s32 st_q16, s16 *raw);
+
+/* Q16 values cross sysfs as decimals with six places, exactly */
+s64 as9888_q16_to_micro(s32 q16);
+int as9888_micro_to_q16(s64 micro, s32 *q16);
+
 /* Offset DAC */
 int as9888_dac2lin(u8 ga, u8 da);
 u8 as9888_lin2dac(u8 ga, int lin);

@@ -570,6 +570,188 @@ static void as9888_test_accel(struct kunit *test)
 		KUNIT_EXPECT_EQ(test, ug, c->ug);
 }
 
+/* 6.7 on the driver's constant output scale, AS9888_ACC_OUT_PER_G per g */
+struct as9888_comp_case {
+	const char *name;
+	s16 raw;
+	s32 ot_q16, st_q16;
+	int ret;
+	s16 out;
+};
+
+static const struct as9888_comp_case as9888_comp_cases[] = {
+	{ "1 g", 272, Q16(16), Q16(256), 0, 1024 },
+	{ "-1 g", -240, Q16(16), Q16(256), 0, -1024 },
+	{ "rounded up", 1, 0, Q16(260), 0, 4 },		/* 3.938 */
+	{ "rounded down", 0, Q16(1) / 2, Q16(300), 0, -2 },	/* -1.707 */
+	{ "clamped high", 2047, Q16(-2000), Q16(100), -ERANGE, 32767 },
+	{ "clamped low", -2048, Q16(2000), Q16(100), -ERANGE, -32768 },
+	{ "zero St", 1, 0, 0, -EINVAL, 0 },
+};
+
+static void as9888_comp_desc(const struct as9888_comp_case *c, char *desc)
+{
+	strscpy(desc, c->name, KUNIT_PARAM_DESC_SIZE);
+}
+
+KUNIT_ARRAY_PARAM(as9888_comp, as9888_comp_cases, as9888_comp_desc);
+
+static void as9888_test_compensate(struct kunit *test)
+{
+	const struct as9888_comp_case *c = test->param_value;
+	s16 out = 0;
+
+	KUNIT_ASSERT_EQ(test, as9888_accel_compensate(c->raw, c->ot_q16,
+						      c->st_q16, &out), c->ret);
+	if (c->ret != -EINVAL)
+		KUNIT_EXPECT_EQ(test, out, c->out);
+}
+
+/* Every raw value comes back exactly from its compensated reading */
+static void as9888_test_uncompensate(struct kunit *test)
+{
+	static const s32 sts[] = {
+		Q16(141) + 7, Q16(256), Q16(346) - 3, Q16(1023),
+	};
+	static const s32 ots[] = { 0, Q16(-300) - 12345, Q16(517) + 999 };
+	unsigned int i, j;
+	s16 out, back;
+	int raw;
+
+	for (i = 0; i < ARRAY_SIZE(sts); i++) {
+		for (j = 0; j < ARRAY_SIZE(ots); j++) {
+			s32 ot = ots[j], st = sts[i];
+
+			for (raw = AS9888_ACC_MIN; raw <= AS9888_ACC_MAX; raw++) {
+				int ret;
+
+				if (as9888_accel_compensate(raw, ot, st, &out))
+					continue;
+				ret = as9888_accel_uncompensate(out, ot, st, &back);
+				KUNIT_ASSERT_EQ(test, ret, 0);
+				KUNIT_ASSERT_EQ(test, back, raw);
+			}
+		}
+	}
+
+	/* A value at a limit may have been clamped */
+	KUNIT_EXPECT_EQ(test, as9888_accel_uncompensate(32767, 0, Q16(256),
+							&back), -ERANGE);
+	KUNIT_EXPECT_EQ(test, as9888_accel_uncompensate(-32768, 0, Q16(256),
+							&back), -ERANGE);
+	KUNIT_EXPECT_EQ(test, as9888_accel_uncompensate(5, 0, 0, &back),
+			-EINVAL);
+}
+
+/* Offset and sensitivity of an axis now, on the example EEPROM's X axis */
+static void as9888_test_correction(struct kunit *test)
+{
+	struct as9888_accel_cal cal = { .t_mdegc = 23750 };
+	struct as9888_eeprom ee;
+	s32 ot, st;
+	u8 da_up;
+
+	as9888_decode_example(test, &ee);
+	da_up = as9888_lin2dac(ee.axis[0].ga,
+			       as9888_dac2lin(ee.axis[0].ga, ee.axis[0].da) + 1);
+
+	/* The factory's state at t_RT: no offset, St_RT = 260 */
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
+						      ee.axis[0].da, 23750,
+						      &ot, &st), 0);
+	KUNIT_EXPECT_EQ(test, ot, 0);
+	KUNIT_EXPECT_EQ(test, st, Q16(260));
+
+	/* 10 degC warmer: Kote 2.4 LSB/degC, St = 260 * (1 - 0.0428125) */
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
+						      ee.axis[0].da, 33750,
+						      &ot, &st), 0);
+	KUNIT_EXPECT_EQ(test, ot, Q16(24));
+	KUNIT_EXPECT_EQ(test, st, 16309862);
+
+	/* One DAC code up moves the output by 2048 / 44 LSB */
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0, da_up,
+						      33750, &ot, &st), 0);
+	KUNIT_EXPECT_EQ(test, ot, 4623267);
+
+	/* A calibration holds at its own temperature */
+	cal.offset_q16[0] = Q16(-5);
+	cal.t_mdegc = 33750;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
+						      ee.axis[0].da, 33750,
+						      &ot, &st), 0);
+	KUNIT_EXPECT_EQ(test, ot, Q16(-5));
+
+	cal.offset_q16[0] = AS9888_CAL_OFFSET_MAX_Q16 + 1;
+	KUNIT_EXPECT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
+						      ee.axis[0].da, 33750,
+						      &ot, &st), -EINVAL);
+	KUNIT_EXPECT_EQ(test, as9888_accel_correction(&ee, &cal, 3,
+						      ee.axis[0].da, 33750,
+						      &ot, &st), -EINVAL);
+}
+
+/* A level test, Z up, becomes a calibration at the factory DAC values */
+static void as9888_test_cal_from_level(struct kunit *test)
+{
+	const s32 a[AS9888_AXES] = { Q16(10), Q16(-20), Q16(270) };
+	const s8 g[AS9888_AXES] = { 0, 0, -1 }, g_bad[AS9888_AXES] = { 0, 0, 2 };
+	struct as9888_accel_cal cal;
+	struct as9888_eeprom ee;
+	u8 da[AS9888_AXES];
+	int axis;
+
+	as9888_decode_example(test, &ee);
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		da[axis] = ee.axis[axis].da;
+
+	KUNIT_ASSERT_EQ(test, as9888_accel_cal_from_level(&ee, a, 23750, g, da,
+							  &cal), 0);
+	KUNIT_EXPECT_EQ(test, cal.t_mdegc, 23750);
+	KUNIT_EXPECT_EQ(test, cal.offset_q16[0], Q16(10));
+	KUNIT_EXPECT_EQ(test, cal.offset_q16[1], Q16(-20));
+	/* Ot_L = A + St(t_L) * G = 270 - 259 */
+	KUNIT_EXPECT_EQ(test, cal.offset_q16[2], Q16(11));
+
+	/* Measured one code up: the factory DAC reads one step lower */
+	da[0] = as9888_lin2dac(ee.axis[0].ga,
+			       as9888_dac2lin(ee.axis[0].ga, da[0]) + 1);
+	KUNIT_ASSERT_EQ(test, as9888_accel_cal_from_level(&ee, a, 23750, g, da,
+							  &cal), 0);
+	KUNIT_EXPECT_EQ(test, cal.offset_q16[0], Q16(10) - 3050403);
+
+	KUNIT_EXPECT_EQ(test, as9888_accel_cal_from_level(&ee, a, 90000, g, da,
+							  &cal), -ERANGE);
+	KUNIT_EXPECT_EQ(test, as9888_accel_cal_from_level(&ee, a, 23750, g_bad,
+							  da, &cal), -EINVAL);
+}
+
+/* Q16 crosses sysfs as a decimal with six places, exactly */
+static void as9888_test_micro(struct kunit *test)
+{
+	s64 x;
+	s32 q;
+
+	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(1), 15);
+	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(-1), -15);
+	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(Q16(1)), 1000000);
+	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(Q16(-12) - Q16(1) / 2),
+			-12500000);
+
+	for (x = S32_MIN; x <= S32_MAX; x += 65521) {
+		KUNIT_ASSERT_EQ(test, as9888_micro_to_q16(as9888_q16_to_micro(x),
+							  &q), 0);
+		KUNIT_ASSERT_EQ(test, q, x);
+	}
+	KUNIT_ASSERT_EQ(test, as9888_micro_to_q16(as9888_q16_to_micro(S32_MAX),
+						  &q), 0);
+	KUNIT_EXPECT_EQ(test, q, S32_MAX);
+
+	/* 2^31 / 2^16 LSB does not fit */
+	KUNIT_EXPECT_EQ(test, as9888_micro_to_q16(32768000000LL, &q), -ERANGE);
+	KUNIT_EXPECT_EQ(test, as9888_micro_to_q16(1LL << 40, &q), -ERANGE);
+}
+
 static void as9888_test_mean(struct kunit *test)
 {
 	s32 m;
@@ -869,6 +1051,11 @@ static struct kunit_case as9888_calib_test_cases[] = {
 	KUNIT_CASE_PARAM(as9888_test_offset_level, as9888_level_gen_params),
 	KUNIT_CASE_PARAM(as9888_test_offset, as9888_offset_gen_params),
 	KUNIT_CASE_PARAM(as9888_test_accel, as9888_accel_gen_params),
+	KUNIT_CASE_PARAM(as9888_test_compensate, as9888_comp_gen_params),
+	KUNIT_CASE(as9888_test_uncompensate),
+	KUNIT_CASE(as9888_test_correction),
+	KUNIT_CASE(as9888_test_cal_from_level),
+	KUNIT_CASE(as9888_test_micro),
 	KUNIT_CASE(as9888_test_mean),
 	KUNIT_CASE_PARAM(as9888_test_dac, as9888_dac_gen_params),
 	KUNIT_CASE(as9888_test_dac_round_trip),

@@ -11,14 +11,17 @@
  *
  * Factory trim comes from an EEPROM that is readable only in EEPROM access
  * mode; it is read once at probe and decoded with the shared calibration
- * arithmetic of as9888_calib.c, which also provides every formula used for
- * the accelerometer scale and offset.
+ * arithmetic of as9888_calib.c. Every accelerometer reading is compensated
+ * with that arithmetic at the temperature of its own sample, so that it
+ * sits on one constant scale: consumers need nothing but raw and scale.
  */
 
 #include <linux/bitfield.h>
 #include <linux/bitmap.h>
 #include <linux/cleanup.h>
 #include <linux/completion.h>
+#include <linux/ctype.h>
+#include <linux/debugfs.h>
 #include <linux/delay.h>
 #include <linux/device.h>
 #include <linux/err.h>
@@ -36,6 +39,7 @@
 #include <linux/property.h>
 #include <linux/regmap.h>
 #include <linux/regulator/consumer.h>
+#include <linux/seq_file.h>
 #include <linux/slab.h>
 #include <linux/string.h>
 #include <linux/sysfs.h>
@@ -61,8 +65,6 @@
 #define AS9888_POLL_US			100
 
 #define AS9888_AUTOSUSPEND_MS		2000
-/* Older temperatures are refreshed before computing scale and offset */
-#define AS9888_TEMP_MAX_AGE_MS		1000
 /* Attempts to start the next measurement of a data-ready triggered buffer */
 #define AS9888_START_RETRIES		3
 
@@ -77,10 +79,23 @@
 #define AS9888_MAGN_SCALE_DEN		256000
 #define AS9888_EHC_OFFSET		128
 
-/* Standard gravity, nm/s^2 */
-#define AS9888_G_NANO			9806650000LL
+/*
+ * Accelerometer: compensated readings are on AS9888_ACC_OUT_PER_G LSB per
+ * g, so the scale is standard gravity, 9.80665 m/s^2, divided by that.
+ */
+#define AS9888_G_NUM			980665
+#define AS9888_G_DEN			100000
+#define AS9888_ACC_SCALE_DEN		(AS9888_G_DEN * AS9888_ACC_OUT_PER_G)
+
 #define AS9888_NANO			1000000000LL
+#define AS9888_MICRO			1000000
 #define AS9888_MILLI			1000
+/* Decimal places of in_accel_*_caliboffset */
+#define AS9888_CALIBOFFSET_PLACES	6
+
+/* ALPF quadruples the conversion time and halves the noise */
+#define AS9888_OSR_ALPF_OFF		1
+#define AS9888_OSR_ALPF_ON		4
 
 /*
  * Temperature, datasheet section 5: T = (176 - TMPS) / 1.6 degC, i.e.
@@ -89,14 +104,6 @@
  */
 #define AS9888_TEMP_OFFSET		(-AS9888_TMPS_ZERO_DEGC)
 #define AS9888_TEMP_SCALE_MDEGC		(-AS9888_MDEGC_PER_TMPS)
-
-/* Accepted level-test mean: twice the range any DAC setting can shift */
-#define AS9888_CALIB_A_MAX_Q16		(16384 * AS9888_Q16_ONE)
-/* Fields of in_accel_calibration: A_x A_y A_z t_L G_x G_y G_z */
-#define AS9888_CALIB_A			0
-#define AS9888_CALIB_T			AS9888_AXES
-#define AS9888_CALIB_G			(AS9888_CALIB_T + 1)
-#define AS9888_CALIB_FIELDS		(AS9888_CALIB_G + AS9888_AXES)
 
 enum as9888_scan {
 	AS9888_SCAN_ACCEL_X,
@@ -112,23 +119,6 @@ enum as9888_scan {
 #define AS9888_SCAN_MAGN_MSK	GENMASK(AS9888_SCAN_MAGN_Z, AS9888_SCAN_MAGN_X)
 
 static const char * const as9888_supply_names[] = { "vdd", "vid" };
-
-/**
- * struct as9888_calibration - level-test data loaded by userspace
- * @valid:	a record is loaded
- * @a_q16:	level-test mean A per axis, Q16 LSB, as measured with the
- *		current offset DAC values (shifted when calibbias changes)
- * @ot_l_q16:	Ot_L = A + St(t_L) * G per axis, Q16 LSB
- * @t_l_mdegc:	level-test temperature t_L
- * @g:		gravity direction in the sensor frame during the level test
- */
-struct as9888_calibration {
-	bool valid;
-	s32 a_q16[AS9888_AXES];
-	s32 ot_l_q16[AS9888_AXES];
-	s32 t_l_mdegc;
-	s8 g[AS9888_AXES];
-};
 
 /**
  * struct as9888_selftest - result of the last magnetometer self-test
@@ -177,10 +167,8 @@ struct as9888_selftest {
  * @buf_men:	the buffer's scan includes a magnetometer channel
  * @alpf:	accelerometer low-pass filter enabled
  * @samp_freq:	sampling frequency of the data-ready triggered buffer, Hz
- * @tmps:	TMPS of the last sample
- * @tmps_time:	when @tmps was measured
- * @tmps_valid:	@tmps holds a measured value
- * @calib:	level-test calibration loaded by userspace
+ * @cal:	accelerometer calibration (caliboffset, calibtemp) applied to
+ *		every accelerometer reading
  * @selftest:	result of the last self-test
  * @scan:	buffer for one scan: up to seven 16-bit channels, timestamp
  * @scan.chans: the channel values
@@ -210,10 +198,7 @@ struct as9888_data {
 	bool buf_men;
 	bool alpf;
 	int samp_freq;
-	u8 tmps;
-	ktime_t tmps_time;
-	bool tmps_valid;
-	struct as9888_calibration calib;
+	struct as9888_accel_cal cal;
 	struct as9888_selftest selftest;
 
 	struct {
@@ -493,14 +478,6 @@ static int as9888_check_magn(const struct as9888_raw_sample *s)
 	return 0;
 }
 
-static void as9888_update_temperature(struct as9888_data *data,
-				      const struct as9888_raw_sample *s)
-{
-	data->tmps = s->tmps;
-	data->tmps_time = ktime_get();
-	data->tmps_valid = true;
-}
-
 /**
  * as9888_measure() - run one measurement and read the sample
  * @indio_dev: the IIO device
@@ -538,14 +515,7 @@ static int as9888_measure(struct iio_dev *indio_dev, u8 mode, bool men,
 		return ret;
 	}
 
-	ret = as9888_check_sample(data, s);
-	if (ret)
-		return ret;
-
-	if (!self_test)
-		as9888_update_temperature(data, s);
-
-	return 0;
+	return as9888_check_sample(data, s);
 }
 
 /**
@@ -608,137 +578,46 @@ static int as9888_write_trim(struct as9888_data *data, unsigned int reg,
 	return 0;
 }
 
-/* Temperature and the accelerometer compensation */
-
-static int as9888_refresh_temperature(struct iio_dev *indio_dev)
-{
-	struct as9888_data *data = iio_priv(indio_dev);
-	struct as9888_raw_sample s;
-	s64 ts;
-	int ret;
-
-	ret = pm_runtime_resume_and_get(data->dev);
-	if (ret)
-		return ret;
-
-	scoped_guard(mutex, &data->lock)
-		ret = as9888_measure(indio_dev, AS9888_MS_SINGLE, false, &s,
-				     &ts);
-
-	as9888_pm_put(data->dev);
-
-	return ret;
-}
-
-static bool as9888_temperature_fresh(struct as9888_data *data)
-{
-	return data->tmps_valid &&
-	       ktime_ms_delta(ktime_get(), data->tmps_time) <=
-	       AS9888_TEMP_MAX_AGE_MS;
-}
+/* Accelerometer compensation */
 
 /**
- * as9888_temperature() - the current die temperature
- * @indio_dev: the IIO device
- * @t_mdegc: the temperature, millidegrees Celsius
+ * as9888_accel_out() - one axis of a sample, compensated
+ * @data: driver data
+ * @s: a checked sample
+ * @axis: 0..2 for X..Z
+ * @out: the reading on the constant scale, AS9888_ACC_OUT_PER_G per g
  *
- * That of the last sample when it is recent. Otherwise a measurement
- * refreshes it, unless the buffer runs; a running buffer keeps it recent
- * anyway (before its first sample, t_RT of the EEPROM stands in).
+ * Offset Ot(t) and sensitivity St(t) (datasheet 6.4, 6.5) are those at the
+ * temperature of the sample itself (TMPS is in the same burst), from the
+ * EEPROM, the calibration and the DAC value in use, which comes from the
+ * register cache. A reading beyond the output range is clamped to it.
  *
  * Return: 0 or a negative error number.
  */
-static int as9888_temperature(struct iio_dev *indio_dev, s32 *t_mdegc)
+static int as9888_accel_out(struct as9888_data *data,
+			    const struct as9888_raw_sample *s, int axis,
+			    s16 *out)
 {
-	struct as9888_data *data = iio_priv(indio_dev);
+	s32 ot_q16, st_q16;
+	unsigned int da;
 	int ret;
 
-	scoped_guard(mutex, &data->lock) {
-		if (as9888_temperature_fresh(data)) {
-			*t_mdegc = as9888_tmps_to_mdegc(data->tmps);
-			return 0;
-		}
-	}
+	lockdep_assert_held(&data->lock);
 
-	if (as9888_claim_direct(indio_dev)) {
-		ret = as9888_refresh_temperature(indio_dev);
-		as9888_release_direct(indio_dev);
-		if (ret)
-			return ret;
-	}
-
-	guard(mutex)(&data->lock);
-	*t_mdegc = data->tmps_valid ? as9888_tmps_to_mdegc(data->tmps) :
-				      data->ee.t_rt_mdegc;
-
-	return 0;
-}
-
-/*
- * Accelerometer scale: m/s^2 per LSB = g / St(t), with St(t) in LSB/g from
- * the EEPROM (datasheet 6.3, 6.4) at the current temperature.
- */
-static int as9888_accel_scale(struct iio_dev *indio_dev, int axis, int *val,
-			      int *val2)
-{
-	struct as9888_data *data = iio_priv(indio_dev);
-	s32 t_mdegc, st_q16;
-	s64 nano;
-	int ret;
-
-	ret = as9888_temperature(indio_dev, &t_mdegc);
+	ret = regmap_read(data->regmap, AS9888_REG_ADA(axis), &da);
 	if (ret)
 		return ret;
 
-	ret = as9888_sensitivity_q16(&data->ee.axis[axis], data->ee.t_rt_mdegc,
-				     t_mdegc, &st_q16);
-	if (ret)
-		return ret;
-	if (st_q16 <= 0)
-		return -EINVAL;
-
-	nano = as9888_div_round_s64(AS9888_G_NANO * AS9888_Q16_ONE, st_q16);
-	*val = div_s64_rem(nano, AS9888_NANO, val2);
-
-	return IIO_VAL_INT_PLUS_NANO;
-}
-
-/*
- * Accelerometer offset: IIO adds it to raw before scaling, so it is
- * -Ot(t) = -(Kote * (t - t_L) + Ot_L) (datasheet 6.5) in LSB, returned as
- * Q16 through IIO_VAL_FRACTIONAL_LOG2; 0 without a calibration.
- */
-static int as9888_accel_offset(struct iio_dev *indio_dev, int axis, int *val,
-			       int *val2)
-{
-	struct as9888_data *data = iio_priv(indio_dev);
-	struct as9888_calibration calib;
-	s32 t_mdegc, ot_q16;
-	int ret;
-
-	scoped_guard(mutex, &data->lock)
-		calib = data->calib;
-
-	if (!calib.valid) {
-		*val = 0;
-		return IIO_VAL_INT;
-	}
-
-	ret = as9888_temperature(indio_dev, &t_mdegc);
+	ret = as9888_accel_correction(&data->ee, &data->cal, axis, da,
+				      as9888_tmps_to_mdegc(s->tmps),
+				      &ot_q16, &st_q16);
 	if (ret)
 		return ret;
 
-	ret = as9888_offset_q16(&data->ee.axis[axis], calib.ot_l_q16[axis],
-				calib.t_l_mdegc, t_mdegc, &ot_q16);
-	if (ret)
-		return ret;
-	if (ot_q16 == S32_MIN)
-		return -ERANGE;
+	ret = as9888_accel_compensate((s16)le16_to_cpu(s->accel[axis]),
+				      ot_q16, st_q16, out);
 
-	*val = -ot_q16;
-	*val2 = ilog2(AS9888_Q16_ONE);
-
-	return IIO_VAL_FRACTIONAL_LOG2;
+	return ret == -ERANGE ? 0 : ret;
 }
 
 /* Offset DAC */
@@ -761,43 +640,16 @@ static int as9888_read_calibbias(struct as9888_data *data, int axis, int *val)
 }
 
 /*
- * One linear DAC code moves the output, and so the level-test mean and
- * offset, by as9888_dac_step_q16(); a loaded calibration follows the DAC.
+ * The calibration is referred to the factory DAC values, so it stays valid
+ * whatever the DAC holds: as9888_accel_out() accounts for the DAC in use.
  */
-static void as9888_calibration_shift(struct as9888_data *data, int axis,
-				     int dlin)
-{
-	s32 shift;
-
-	if (!data->calib.valid || !dlin)
-		return;
-
-	shift = dlin * as9888_dac_step_q16(data->ee.axis[axis].ga);
-	data->calib.a_q16[axis] += shift;
-	data->calib.ot_l_q16[axis] += shift;
-}
-
 static int as9888_set_calibbias(struct as9888_data *data, int axis, int lin)
 {
-	u8 ga = data->ee.axis[axis].ga;
-	unsigned int da;
-	u8 new_da;
-	int ret;
+	u8 da = as9888_lin2dac(data->ee.axis[axis].ga, lin);
 
 	lockdep_assert_held(&data->lock);
 
-	ret = regmap_read(data->regmap, AS9888_REG_ADA(axis), &da);
-	if (ret)
-		return ret;
-
-	new_da = as9888_lin2dac(ga, lin);
-	ret = as9888_write_trim(data, AS9888_REG_ADA(axis), &new_da, 1);
-	if (ret)
-		return ret;
-
-	as9888_calibration_shift(data, axis, lin - as9888_dac2lin(ga, da));
-
-	return 0;
+	return as9888_write_trim(data, AS9888_REG_ADA(axis), &da, 1);
 }
 
 static int as9888_write_calibbias(struct iio_dev *indio_dev, int axis,
@@ -829,6 +681,7 @@ static int as9888_read_channel(struct iio_dev *indio_dev,
 	struct as9888_data *data = iio_priv(indio_dev);
 	bool men = chan->type == IIO_MAGN;
 	struct as9888_raw_sample s;
+	s16 accel;
 	s64 ts;
 	int ret;
 
@@ -836,8 +689,11 @@ static int as9888_read_channel(struct iio_dev *indio_dev,
 	if (ret)
 		return ret;
 
-	scoped_guard(mutex, &data->lock)
+	scoped_guard(mutex, &data->lock) {
 		ret = as9888_measure(indio_dev, AS9888_MS_SINGLE, men, &s, &ts);
+		if (!ret && chan->type == IIO_ACCEL)
+			ret = as9888_accel_out(data, &s, chan->address, &accel);
+	}
 
 	as9888_pm_put(data->dev);
 	if (ret)
@@ -845,7 +701,7 @@ static int as9888_read_channel(struct iio_dev *indio_dev,
 
 	switch (chan->type) {
 	case IIO_ACCEL:
-		*val = (s16)le16_to_cpu(s.accel[chan->address]);
+		*val = accel;
 		return IIO_VAL_INT;
 	case IIO_MAGN:
 		ret = as9888_check_magn(&s);
@@ -869,6 +725,25 @@ static int as9888_read_samp_freq(struct as9888_data *data, int *val)
 	return IIO_VAL_INT;
 }
 
+static int as9888_read_oversampling(struct as9888_data *data, int *val)
+{
+	guard(mutex)(&data->lock);
+	*val = data->alpf ? AS9888_OSR_ALPF_ON : AS9888_OSR_ALPF_OFF;
+
+	return IIO_VAL_INT;
+}
+
+static int as9888_write_oversampling(struct as9888_data *data, int ratio)
+{
+	if (ratio != AS9888_OSR_ALPF_OFF && ratio != AS9888_OSR_ALPF_ON)
+		return -EINVAL;
+
+	guard(mutex)(&data->lock);
+	data->alpf = ratio == AS9888_OSR_ALPF_ON;
+
+	return 0;
+}
+
 static int as9888_read_raw(struct iio_dev *indio_dev,
 			   const struct iio_chan_spec *chan, int *val,
 			   int *val2, long mask)
@@ -886,8 +761,9 @@ static int as9888_read_raw(struct iio_dev *indio_dev,
 	case IIO_CHAN_INFO_SCALE:
 		switch (chan->type) {
 		case IIO_ACCEL:
-			return as9888_accel_scale(indio_dev, chan->address,
-						  val, val2);
+			*val = AS9888_G_NUM;
+			*val2 = AS9888_ACC_SCALE_DEN;
+			return IIO_VAL_FRACTIONAL;
 		case IIO_MAGN:
 			*val = AS9888_MAGN_SCALE_NUM *
 			       (data->ee.axis[chan->address].ehc +
@@ -901,18 +777,14 @@ static int as9888_read_raw(struct iio_dev *indio_dev,
 			return -EINVAL;
 		}
 	case IIO_CHAN_INFO_OFFSET:
-		switch (chan->type) {
-		case IIO_ACCEL:
-			return as9888_accel_offset(indio_dev, chan->address,
-						   val, val2);
-		case IIO_TEMP:
-			*val = AS9888_TEMP_OFFSET;
-			return IIO_VAL_INT;
-		default:
+		if (chan->type != IIO_TEMP)
 			return -EINVAL;
-		}
+		*val = AS9888_TEMP_OFFSET;
+		return IIO_VAL_INT;
 	case IIO_CHAN_INFO_CALIBBIAS:
 		return as9888_read_calibbias(data, chan->address, val);
+	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
+		return as9888_read_oversampling(data, val);
 	case IIO_CHAN_INFO_SAMP_FREQ:
 		return as9888_read_samp_freq(data, val);
 	default:
@@ -922,6 +794,10 @@ static int as9888_read_raw(struct iio_dev *indio_dev,
 
 static const int as9888_calibbias_range[] = {
 	-AS9888_DAC_LIN_MAX, 1, AS9888_DAC_LIN_MAX
+};
+
+static const int as9888_oversampling_avail[] = {
+	AS9888_OSR_ALPF_OFF, AS9888_OSR_ALPF_ON
 };
 
 /*
@@ -944,6 +820,11 @@ static int as9888_read_avail(struct iio_dev *indio_dev,
 		*vals = as9888_calibbias_range;
 		*type = IIO_VAL_INT;
 		return IIO_AVAIL_RANGE;
+	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
+		*vals = as9888_oversampling_avail;
+		*length = ARRAY_SIZE(as9888_oversampling_avail);
+		*type = IIO_VAL_INT;
+		return IIO_AVAIL_LIST;
 	case IIO_CHAN_INFO_SAMP_FREQ:
 		*vals = as9888_samp_freq_avail;
 		*length = ARRAY_SIZE(as9888_samp_freq_avail);
@@ -988,6 +869,13 @@ static int as9888_write_raw(struct iio_dev *indio_dev,
 		return ret;
 	case IIO_CHAN_INFO_SAMP_FREQ:
 		return as9888_write_samp_freq(data, val);
+	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
+		/* The sample time changes: not while the buffer runs */
+		if (!as9888_claim_direct(indio_dev))
+			return -EBUSY;
+		ret = as9888_write_oversampling(data, val);
+		as9888_release_direct(indio_dev);
+		return ret;
 	default:
 		return -EINVAL;
 	}
@@ -1000,6 +888,7 @@ static int as9888_write_raw_get_fmt(struct iio_dev *indio_dev,
 	switch (mask) {
 	case IIO_CHAN_INFO_CALIBBIAS:
 	case IIO_CHAN_INFO_SAMP_FREQ:
+	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
 		return IIO_VAL_INT;
 	default:
 		return -EINVAL;
@@ -1017,171 +906,135 @@ as9888_get_mount_matrix(const struct iio_dev *indio_dev,
 	return &data->orientation;
 }
 
-static ssize_t as9888_alpf_read(struct iio_dev *indio_dev, uintptr_t private,
-				const struct iio_chan_spec *chan, char *buf)
-{
-	struct as9888_data *data = iio_priv(indio_dev);
-
-	guard(mutex)(&data->lock);
-
-	return sysfs_emit(buf, "%d\n", data->alpf);
-}
-
-static ssize_t as9888_alpf_write(struct iio_dev *indio_dev, uintptr_t private,
-				 const struct iio_chan_spec *chan,
-				 const char *buf, size_t len)
-{
-	struct as9888_data *data = iio_priv(indio_dev);
-	bool enable;
-	int ret;
-
-	ret = kstrtobool(buf, &enable);
-	if (ret)
-		return ret;
-
-	/* The sample time changes: not while the buffer runs */
-	if (!as9888_claim_direct(indio_dev))
-		return -EBUSY;
-
-	scoped_guard(mutex, &data->lock)
-		data->alpf = enable;
-
-	as9888_release_direct(indio_dev);
-
-	return len;
-}
-
-static ssize_t as9888_calibration_read(struct iio_dev *indio_dev,
+static ssize_t as9888_caliboffset_read(struct iio_dev *indio_dev,
 				       uintptr_t private,
 				       const struct iio_chan_spec *chan,
 				       char *buf)
 {
 	struct as9888_data *data = iio_priv(indio_dev);
-	const struct as9888_calibration *c = &data->calib;
+	s64 micro;
+	u64 abs_micro;
+	u32 frac;
 
-	guard(mutex)(&data->lock);
+	scoped_guard(mutex, &data->lock)
+		micro = as9888_q16_to_micro(data->cal.offset_q16[chan->address]);
 
-	if (!c->valid)
-		return sysfs_emit(buf, "none\n");
+	abs_micro = micro < 0 ? -micro : micro;
+	abs_micro = div_u64_rem(abs_micro, AS9888_MICRO, &frac);
 
-	return sysfs_emit(buf, "%d %d %d %d %d %d %d\n",
-			  c->a_q16[0], c->a_q16[1], c->a_q16[2], c->t_l_mdegc,
-			  c->g[0], c->g[1], c->g[2]);
+	return sysfs_emit(buf, "%s%llu.%0*u\n", micro < 0 ? "-" : "",
+			  abs_micro, AS9888_CALIBOFFSET_PLACES, frac);
 }
 
 /**
- * as9888_parse_ints() - parse whitespace-separated decimal integers
- * @buf: the input, not NUL-terminated
+ * as9888_parse_micro() - parse a decimal with up to six places
+ * @buf: "[-]I[.F]", optionally followed by a newline; not NUL-terminated
  * @len: length of @buf
- * @vals: the integers
- * @n: number of integers that @buf must hold
+ * @micro: the value in millionths
  *
- * Unlike sscanf(), which lets a too large number wrap around, every field
- * must be a decimal int (kstrtoint()).
+ * Unlike iio_str_to_fixpoint(), the integer part may not wrap around.
  *
- * Return: 0, -EINVAL when @buf does not hold exactly @n ints, or -ENOMEM.
+ * Return: 0, -EINVAL when @buf is no such number, or -ENOMEM.
  */
-static int as9888_parse_ints(const char *buf, size_t len, int *vals,
-			     unsigned int n)
+static int as9888_parse_micro(const char *buf, size_t len, s64 *micro)
 {
 	char *str __free(kfree) = kstrndup(buf, len, GFP_KERNEL);
-	char *cur, *field;
-	unsigned int i = 0;
+	unsigned int whole, frac = 0;
+	char *num, *dot;
+	size_t places = 0;
+	bool neg;
 
 	if (!str)
 		return -ENOMEM;
 
-	cur = str;
-	while ((field = strsep(&cur, " \t\n"))) {
-		if (!*field)
-			continue;
-		if (i == n || kstrtoint(field, 10, &vals[i]))
+	num = strim(str);
+	neg = *num == '-';
+	if (neg)
+		num++;
+
+	dot = strchr(num, '.');
+	if (dot) {
+		*dot++ = '\0';
+		for (; dot[places]; places++) {
+			if (!isdigit(dot[places]) ||
+			    places == AS9888_CALIBOFFSET_PLACES)
+				return -EINVAL;
+			frac = frac * 10 + dot[places] - '0';
+		}
+		if (!places)
 			return -EINVAL;
-		i++;
 	}
 
-	return i == n ? 0 : -EINVAL;
-}
-
-/**
- * as9888_calibration_parse() - validate a level-test record
- * @data: driver data
- * @buf: "A_x A_y A_z t_L G_x G_y G_z"
- * @len: length of @buf
- * @c: the record with Ot_L computed
- *
- * A_x..A_z are Q16 LSB within +-AS9888_CALIB_A_MAX_Q16, t_L is in mdegC
- * within the valid TMPS range and G has exactly one non-zero component,
- * -1 or 1.
- *
- * Return: 0, -EINVAL or -ENOMEM.
- */
-static int as9888_calibration_parse(struct as9888_data *data, const char *buf,
-				    size_t len, struct as9888_calibration *c)
-{
-	int f[AS9888_CALIB_FIELDS], axis, t, ret;
-	const int *a = &f[AS9888_CALIB_A], *g = &f[AS9888_CALIB_G];
-	unsigned int vertical = 0;
-	s32 st_q16;
-
-	ret = as9888_parse_ints(buf, len, f, AS9888_CALIB_FIELDS);
-	if (ret)
-		return ret;
-
-	t = f[AS9888_CALIB_T];
-	if (t < as9888_tmps_to_mdegc(AS9888_TMPS_MAX) ||
-	    t > as9888_tmps_to_mdegc(AS9888_TMPS_MIN))
+	/* kstrtouint() would take a sign, which has been dealt with */
+	if (!isdigit(*num) || kstrtouint(num, 10, &whole))
 		return -EINVAL;
 
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		if (a[axis] < -AS9888_CALIB_A_MAX_Q16 ||
-		    a[axis] > AS9888_CALIB_A_MAX_Q16)
-			return -EINVAL;
-		if (g[axis] < -1 || g[axis] > 1)
-			return -EINVAL;
-		if (g[axis])
-			vertical++;
-	}
-	if (vertical != 1)
-		return -EINVAL;
+	for (; places < AS9888_CALIBOFFSET_PLACES; places++)
+		frac *= 10;
 
-	c->t_l_mdegc = t;
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = as9888_sensitivity_q16(&data->ee.axis[axis],
-					     data->ee.t_rt_mdegc, t, &st_q16);
-		if (ret)
-			return -EINVAL;
-
-		ret = as9888_offset_level_q16(a[axis], st_q16, g[axis],
-					      &c->ot_l_q16[axis]);
-		if (ret)
-			return -EINVAL;
-
-		c->a_q16[axis] = a[axis];
-		c->g[axis] = g[axis];
-	}
-	c->valid = true;
+	*micro = (s64)whole * AS9888_MICRO + frac;
+	if (neg)
+		*micro = -*micro;
 
 	return 0;
 }
 
-static ssize_t as9888_calibration_write(struct iio_dev *indio_dev,
+static ssize_t as9888_caliboffset_write(struct iio_dev *indio_dev,
 					uintptr_t private,
 					const struct iio_chan_spec *chan,
 					const char *buf, size_t len)
 {
 	struct as9888_data *data = iio_priv(indio_dev);
-	struct as9888_calibration c = { };
+	s32 q16;
+	s64 micro;
 	int ret;
 
-	if (!sysfs_streq(buf, "none")) {
-		ret = as9888_calibration_parse(data, buf, len, &c);
-		if (ret)
-			return ret;
-	}
+	ret = as9888_parse_micro(buf, len, &micro);
+	if (ret)
+		return ret;
+
+	if (micro < -(s64)AS9888_CAL_OFFSET_MAX_LSB * AS9888_MICRO ||
+	    micro > (s64)AS9888_CAL_OFFSET_MAX_LSB * AS9888_MICRO ||
+	    as9888_micro_to_q16(micro, &q16))
+		return -EINVAL;
 
 	guard(mutex)(&data->lock);
-	data->calib = c;
+	data->cal.offset_q16[chan->address] = q16;
+
+	return len;
+}
+
+static ssize_t as9888_calibtemp_read(struct iio_dev *indio_dev,
+				     uintptr_t private,
+				     const struct iio_chan_spec *chan,
+				     char *buf)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+
+	guard(mutex)(&data->lock);
+
+	return sysfs_emit(buf, "%d\n", data->cal.t_mdegc);
+}
+
+/* The valid TMPS range, -30..85 degC */
+static ssize_t as9888_calibtemp_write(struct iio_dev *indio_dev,
+				      uintptr_t private,
+				      const struct iio_chan_spec *chan,
+				      const char *buf, size_t len)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	int t_mdegc, ret;
+
+	ret = kstrtoint(buf, 10, &t_mdegc);
+	if (ret)
+		return ret;
+
+	if (t_mdegc < as9888_tmps_to_mdegc(AS9888_TMPS_MAX) ||
+	    t_mdegc > as9888_tmps_to_mdegc(AS9888_TMPS_MIN))
+		return -EINVAL;
+
+	guard(mutex)(&data->lock);
+	data->cal.t_mdegc = t_mdegc;
 
 	return len;
 }
@@ -1189,16 +1042,16 @@ static ssize_t as9888_calibration_write(struct iio_dev *indio_dev,
 static const struct iio_chan_spec_ext_info as9888_accel_ext_info[] = {
 	IIO_MOUNT_MATRIX(IIO_SHARED_BY_TYPE, as9888_get_mount_matrix),
 	{
-		.name = "filter_low_pass_en",
-		.shared = IIO_SHARED_BY_TYPE,
-		.read = as9888_alpf_read,
-		.write = as9888_alpf_write,
+		.name = "caliboffset",
+		.shared = IIO_SEPARATE,
+		.read = as9888_caliboffset_read,
+		.write = as9888_caliboffset_write,
 	},
 	{
-		.name = "calibration",
+		.name = "calibtemp",
 		.shared = IIO_SHARED_BY_TYPE,
-		.read = as9888_calibration_read,
-		.write = as9888_calibration_write,
+		.read = as9888_calibtemp_read,
+		.write = as9888_calibtemp_write,
 	},
 	{ }
 };
@@ -1214,16 +1067,18 @@ static const struct iio_chan_spec_ext_info as9888_magn_ext_info[] = {
 	.channel2 = IIO_MOD_##_axis,					\
 	.address = AS9888_SCAN_ACCEL_##_axis - AS9888_SCAN_ACCEL_X,	\
 	.info_mask_separate = BIT(IIO_CHAN_INFO_RAW) |			\
-			      BIT(IIO_CHAN_INFO_SCALE) |		\
-			      BIT(IIO_CHAN_INFO_OFFSET) |		\
 			      BIT(IIO_CHAN_INFO_CALIBBIAS),		\
 	.info_mask_separate_available = BIT(IIO_CHAN_INFO_CALIBBIAS),	\
+	.info_mask_shared_by_type = BIT(IIO_CHAN_INFO_SCALE) |		\
+				    BIT(IIO_CHAN_INFO_OVERSAMPLING_RATIO), \
+	.info_mask_shared_by_type_available =				\
+		BIT(IIO_CHAN_INFO_OVERSAMPLING_RATIO),			\
 	.info_mask_shared_by_all = BIT(IIO_CHAN_INFO_SAMP_FREQ),	\
 	.info_mask_shared_by_all_available = BIT(IIO_CHAN_INFO_SAMP_FREQ), \
 	.scan_index = AS9888_SCAN_ACCEL_##_axis,			\
 	.scan_type = {							\
 		.sign = 's',						\
-		.realbits = 12,						\
+		.realbits = 16,						\
 		.storagebits = 16,					\
 		.endianness = IIO_CPU,					\
 	},								\
@@ -1370,36 +1225,18 @@ static ssize_t selftest_store(struct device *dev, struct device_attribute *attr,
 	return ret ?: len;
 }
 
-/* " X.XXX": an adjusted reading in LSB, rounded to 1/1000 */
-static int as9888_emit_q8(char *buf, int at, s32 q8)
-{
-	s64 milli = as9888_div_round_s64((s64)q8 * AS9888_MILLI, AS9888_Q8_ONE);
-	u64 abs_milli = milli < 0 ? -milli : milli;
-	u32 frac;
-	u64 whole = div_u64_rem(abs_milli, AS9888_MILLI, &frac);
-
-	return sysfs_emit_at(buf, at, " %s%llu.%03u", milli < 0 ? "-" : "",
-			     whole, frac);
-}
-
 static ssize_t selftest_show(struct device *dev, struct device_attribute *attr,
 			     char *buf)
 {
 	struct as9888_data *data = iio_priv(dev_to_iio_dev(dev));
 	const struct as9888_selftest *res = &data->selftest;
-	int axis, len;
 
 	guard(mutex)(&data->lock);
 
 	if (!res->done)
 		return sysfs_emit(buf, "none\n");
 
-	len = sysfs_emit(buf, "%s", res->pass ? "pass" : "fail");
-	for (axis = 0; axis < AS9888_AXES; axis++)
-		len += as9888_emit_q8(buf, len, res->adj_q8[axis]);
-	len += sysfs_emit_at(buf, len, "\n");
-
-	return len;
+	return sysfs_emit(buf, "%s\n", res->pass ? "pass" : "fail");
 }
 
 static IIO_DEVICE_ATTR_RW(selftest, 0);
@@ -1412,6 +1249,51 @@ static struct attribute *as9888_attrs[] = {
 static const struct attribute_group as9888_attrs_group = {
 	.attrs = as9888_attrs,
 };
+
+/*
+ * debugfs iio/iio:deviceX/selftest_readings: the adjusted self-test
+ * readings of the last test, "X Y Z" in LSB rounded to 1/1000.
+ */
+static int as9888_selftest_readings_show(struct seq_file *m, void *unused)
+{
+	struct as9888_data *data = iio_priv(m->private);
+	const struct as9888_selftest *res = &data->selftest;
+	int axis;
+
+	guard(mutex)(&data->lock);
+
+	if (!res->done) {
+		seq_puts(m, "none\n");
+		return 0;
+	}
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		s64 milli = as9888_div_round_s64((s64)res->adj_q8[axis] *
+						 AS9888_MILLI, AS9888_Q8_ONE);
+		u64 abs_milli = milli < 0 ? -milli : milli;
+		u32 frac;
+		u64 whole = div_u64_rem(abs_milli, AS9888_MILLI, &frac);
+
+		seq_printf(m, "%s%s%llu.%03u", axis ? " " : "",
+			   milli < 0 ? "-" : "", whole, frac);
+	}
+	seq_putc(m, '\n');
+
+	return 0;
+}
+DEFINE_SHOW_ATTRIBUTE(as9888_selftest_readings);
+
+/* Removed with the IIO device's debugfs directory when it unregisters */
+static void as9888_debugfs_init(struct iio_dev *indio_dev)
+{
+	struct dentry *dir = iio_get_debugfs_dentry(indio_dev);
+
+	if (IS_ERR_OR_NULL(dir))
+		return;
+
+	debugfs_create_file("selftest_readings", 0400, dir, indio_dev,
+			    &as9888_selftest_readings_fops);
+}
 
 /* Buffer and trigger */
 
@@ -1436,26 +1318,14 @@ static const struct iio_info as9888_info = {
 	.attrs = &as9888_attrs_group,
 };
 
-static s16 as9888_scan_value(const struct as9888_raw_sample *s,
-			     unsigned int bit)
-{
-	switch (bit) {
-	case AS9888_SCAN_ACCEL_X ... AS9888_SCAN_ACCEL_Z:
-		return le16_to_cpu(s->accel[bit - AS9888_SCAN_ACCEL_X]);
-	case AS9888_SCAN_MAGN_X ... AS9888_SCAN_MAGN_Z:
-		return le16_to_cpu(s->magn[bit - AS9888_SCAN_MAGN_X]);
-	case AS9888_SCAN_TEMP:
-		return s->tmps;
-	default:
-		return 0;
-	}
-}
-
 /* Fill data->scan from a checked sample, false if it is no good */
 static bool as9888_fill_scan(struct as9888_data *data,
 			     const struct as9888_raw_sample *s)
 {
 	unsigned int bit, i = 0;
+	s16 *chan;
+
+	lockdep_assert_held(&data->lock);
 
 	/* A saturated axis (HOFL) reads -4096 or 4095: pushed as it is */
 	if (data->buf_men && FIELD_GET(AS9888_ST2_HST_MSK, s->st2)) {
@@ -1464,8 +1334,22 @@ static bool as9888_fill_scan(struct as9888_data *data,
 	}
 
 	/* The timestamp is placed by the IIO core */
-	for_each_set_bit(bit, &data->scan_mask, AS9888_SCAN_TIMESTAMP)
-		data->scan.chans[i++] = as9888_scan_value(s, bit);
+	for_each_set_bit(bit, &data->scan_mask, AS9888_SCAN_TIMESTAMP) {
+		chan = &data->scan.chans[i++];
+		switch (bit) {
+		case AS9888_SCAN_ACCEL_X ... AS9888_SCAN_ACCEL_Z:
+			if (as9888_accel_out(data, s, bit - AS9888_SCAN_ACCEL_X,
+					     chan))
+				return false;
+			break;
+		case AS9888_SCAN_MAGN_X ... AS9888_SCAN_MAGN_Z:
+			*chan = le16_to_cpu(s->magn[bit - AS9888_SCAN_MAGN_X]);
+			break;
+		case AS9888_SCAN_TEMP:
+			*chan = s->tmps;
+			break;
+		}
+	}
 
 	return true;
 }
@@ -1482,13 +1366,7 @@ static int as9888_collect_sample(struct as9888_data *data,
 
 	data->pd_since = data->drdy_time;
 
-	ret = as9888_check_sample(data, s);
-	if (ret)
-		return ret;
-
-	as9888_update_temperature(data, s);
-
-	return 0;
+	return as9888_check_sample(data, s);
 }
 
 /**
@@ -1903,6 +1781,9 @@ static int as9888_chip_init(struct as9888_data *data)
 	if (ret)
 		return ret;
 
+	/* Until userspace loads a level test: the factory's state */
+	data->cal.t_mdegc = data->ee.t_rt_mdegc;
+
 	return as9888_load_trim(data);
 }
 
@@ -2019,7 +1900,13 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 	if (ret)
 		return dev_err_probe(dev, ret, "cannot enable runtime PM\n");
 
-	return devm_iio_device_register(dev, indio_dev);
+	ret = devm_iio_device_register(dev, indio_dev);
+	if (ret)
+		return ret;
+
+	as9888_debugfs_init(indio_dev);
+
+	return 0;
 }
 EXPORT_SYMBOL_NS_GPL(as9888_core_probe, AS9888_NS);
 
