@@ -801,13 +801,19 @@ static const int as9888_oversampling_avail[] = {
 };
 
 /*
- * Rates of the data-ready triggered buffer. The chip needs t_ACC (1.2 ms,
- * 4.8 ms with the low-pass filter) or t_MAG (7.3 ms) per sample plus t_PD
- * and the bus transfers; a rate beyond that yields samples as fast as they
- * complete.
+ * Rates of the data-ready triggered buffer: those whose period leaves room
+ * for the longest sample, t_MAG with the magnetometer in the scan, plus
+ * t_PD and the sample's bus transfers (a mode write and a 16-byte burst
+ * read take about 0.5 ms on I2C at 400 kHz), so that every rate offered is
+ * the rate delivered whatever the scan and the filter.
  */
+#define AS9888_BUS_BUDGET_US		1000
+#define AS9888_SAMP_FREQ_MAX		100
+static_assert(USEC_PER_SEC / AS9888_SAMP_FREQ_MAX >=
+	      AS9888_T_MAG_US + AS9888_T_PD_US + AS9888_BUS_BUDGET_US);
+
 static const int as9888_samp_freq_avail[] = {
-	1, 2, 5, 10, 25, 50, 100, 200, 500,
+	1, 2, 5, 10, 20, 25, 50, AS9888_SAMP_FREQ_MAX,
 };
 
 static int as9888_read_avail(struct iio_dev *indio_dev,
@@ -1129,6 +1135,37 @@ static const struct iio_chan_spec as9888_channels[] = {
 	},
 	IIO_CHAN_SOFT_TIMESTAMP(AS9888_SCAN_TIMESTAMP),
 };
+
+/*
+ * sampling_frequency is that of the data-ready trigger: without INT1 the
+ * buffer runs on another trigger, which sets the rate, so the channels go
+ * without it.
+ */
+static int as9888_channels_init(struct iio_dev *indio_dev, bool drdy)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	struct iio_chan_spec *chans;
+	unsigned int i;
+
+	indio_dev->num_channels = ARRAY_SIZE(as9888_channels);
+	if (drdy) {
+		indio_dev->channels = as9888_channels;
+		return 0;
+	}
+
+	chans = devm_kmemdup(data->dev, as9888_channels,
+			     sizeof(as9888_channels), GFP_KERNEL);
+	if (!chans)
+		return -ENOMEM;
+
+	for (i = 0; i < ARRAY_SIZE(as9888_channels); i++) {
+		chans[i].info_mask_shared_by_all = 0;
+		chans[i].info_mask_shared_by_all_available = 0;
+	}
+	indio_dev->channels = chans;
+
+	return 0;
+}
 
 /* Self-test, step 2 of the application note */
 
@@ -1862,8 +1899,6 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 
 	indio_dev->name = AS9888_DRV_NAME;
 	indio_dev->info = &as9888_info;
-	indio_dev->channels = as9888_channels;
-	indio_dev->num_channels = ARRAY_SIZE(as9888_channels);
 	indio_dev->modes = INDIO_DIRECT_MODE;
 
 	ret = as9888_power_init(data);
@@ -1882,6 +1917,10 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 		if (ret)
 			return ret;
 	}
+
+	ret = as9888_channels_init(indio_dev, irq);
+	if (ret)
+		return ret;
 
 	ret = devm_iio_triggered_buffer_setup(dev, indio_dev,
 					      iio_pollfunc_store_time,
