@@ -41,7 +41,7 @@ int cmd_factory_test(const struct cli_opts *o)
 	return ret;
 }
 
-/* Through the driver: the record's DAC and level data into its attributes */
+/* Through the driver: the record's DAC and calibration into its attributes */
 static int restore_iio(const struct cli_opts *o)
 {
 	char dir[IIO_PATH_MAX];

@@ -101,18 +101,33 @@ int ftest_check_eeprom(struct ftest_ctx *x,
 	return 0;
 }
 
+static const char *const selftest_steps[AS9888_AXES] = { "2-17", "2-19", "2-21" };
+#define SELFTEST_NAME_LEN	40
+
+static void selftest_axis_name(int axis, char name[SELFTEST_NAME_LEN])
+{
+	snprintf(name, SELFTEST_NAME_LEN, "self-test %c after adjustment",
+		 ftest_axis_name[axis]);
+}
+
 bool ftest_judge_selftest_axis(struct ftest_ctx *x, int axis, bool ok,
 			       int32_t adj_q8, const char *note)
 {
-	static const char *const steps[AS9888_AXES] = { "2-17", "2-19", "2-21" };
-	char name[40];
+	char name[SELFTEST_NAME_LEN];
 
-	snprintf(name, sizeof(name), "self-test %c after adjustment",
-		 ftest_axis_name[axis]);
+	selftest_axis_name(axis, name);
 
-	return ftest_judge(x, steps[axis], name, ok,
+	return ftest_judge(x, selftest_steps[axis], name, ok,
 			   axis == 2 ? "300..1000" : "-100..100", "%.2f%s",
 			   adj_q8 / 256.0, note);
+}
+
+void ftest_skip_selftest_axis(struct ftest_ctx *x, int axis, const char *why)
+{
+	char name[SELFTEST_NAME_LEN];
+
+	selftest_axis_name(axis, name);
+	ftest_skip(x, selftest_steps[axis], name, why);
 }
 
 void level_run_init(struct level_run *r)

@@ -7,20 +7,33 @@
  *   step 1  the driver identified the chip when it bound (WIA) and loaded
  *           the trims; the EEPROM comes from its NVMEM provider and the DAC
  *           values go through in_accel_*_calibbias, read back (D10)
- *   step 2  the driver's selftest attribute; its readings are judged again
- *           here against the windows of steps 2-17..2-22
+ *   step 2  the driver's selftest attribute runs the test and reads back
+ *           its verdict (pass/fail); the adjusted readings come from
+ *           debugfs iio/iio:deviceN/selftest_readings and are judged again
+ *           here against the windows of steps 2-17..2-22. Without them
+ *           (debugfs not mounted or not readable) those judgments are
+ *           skipped, saying so, and the driver's verdict decides
  *   step 3  samples from the buffer on the driver's data-ready trigger
  *           (INT1): accelerometer X, Y, Z and the temperature code; the
  *           driver checks ST1 and EMPT of every sample and delivers none
- *           that fails, and the DAC goes through calibbias
+ *           that fails, and the DAC goes through calibbias. The filter is
+ *           in_accel_oversampling_ratio: 1 off, 4 on (ALPF)
+ *
+ * The driver delivers compensated accelerometer samples (1024 per g); the
+ * application note judges and averages the chip's own output. The test
+ * takes it back exactly (accel_raw.h): with the EEPROM, the driver's
+ * calibration as read (caliboffset, calibtemp) and the DAC in use, Ot and
+ * St at each sample's own TMPS, then as9888_accel_uncompensate(). A sample
+ * at the limit of the driver's output cannot be taken back: it fails the
+ * run as saturated.
  *
  * Of the pin checks of D11, INT1 is judged by the data-ready trigger
  * delivering samples; RSTN and INT2 need the pins, which the driver owns or
  * does not use: they are reported as skipped (run --backend raw with the
  * driver unbound for them). Every attribute the test changes is saved
- * first and put back by finish(), so the device is left as it was found; a
- * command that wants the new calibration applied writes it afterwards
- * (iio_apply_record()).
+ * first and put back by finish(), in the order saved, so the device is
+ * left as it was found; a command that wants the new calibration applied
+ * writes it afterwards (iio_apply_record()).
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -32,9 +45,11 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "accel_raw.h"
 #include "ftest_internal.h"
 #include "iio.h"
 #include "iio_scan.h"
+#include "iio_value.h"
 
 /*
  * Data-ready rate during the test: a filtered accelerometer sample takes
@@ -48,10 +63,10 @@
 #define IIO_SAVED_MAX		32
 #define IIO_NAME_MAX		64
 #define IIO_SCAN_CHANNELS	4
-
-static const char *const calibbias_attr[AS9888_AXES] = {
-	"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
-};
+#define IIO_OVERSAMPLING_ATTR	"in_accel_oversampling_ratio"
+#define IIO_OVERSAMPLING_OFF	"1"
+#define IIO_OVERSAMPLING_ALPF	"4"
+#define IIO_SELFTEST_READINGS	"selftest_readings"
 
 /* The buffer's channels the test uses, in the order of this table */
 static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
@@ -74,6 +89,7 @@ struct saved_attr {
  * @saved:	attributes to put back at the end, in this order
  * @n_saved:	how many
  * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
+ * @comp:	what the driver compensates the samples with (step 3)
  */
 struct iio_test_dev {
 	char dir[IIO_PATH_MAX];
@@ -85,6 +101,7 @@ struct iio_test_dev {
 	struct saved_attr saved[IIO_SAVED_MAX];
 	unsigned int n_saved;
 	bool int1_seen;
+	struct accel_comp comp;
 };
 
 /* Remember @name's value, once, so that finish() can put it back */
@@ -141,40 +158,33 @@ static void iio_sleep_ns(struct ftest_ctx *x, uint64_t ns)
 		;
 }
 
-/* Write the DAC values through calibbias and read them back into x->dac */
+/* A driver interface failed: @why says which and how; the test stops */
+static int iio_failed(struct ftest_ctx *x, const char *step, const char *what,
+		      const char *why, int err)
+{
+	report_add(&x->res->report, step, what, JUDGMENT_FAIL, NULL, "%s", why);
+	x->stop = true;
+
+	return err;
+}
+
+/*
+ * Write the DAC values through calibbias (saved by ftest_run_iio()) and
+ * read them back into x->dac
+ */
 static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 		   const char *step, bool *same)
 {
-	const struct as9888_eeprom *ee = &x->res->ee;
 	struct iio_test_dev *d = x->dev;
-	char want[IIO_ATTR_MAX], got[IIO_ATTR_MAX];
-	int axis, ret;
+	uint8_t got[AS9888_AXES];
+	char err[IIO_ERR_LEN];
+	int ret;
 
-	*same = true;
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		uint8_t ga = ee->axis[axis].ga;
-		char *end;
-		long lin;
-
-		snprintf(want, sizeof(want), "%d", as9888_dac2lin(ga, dac[axis]));
-		ret = change_attr(d, calibbias_attr[axis], want);
-		if (!ret && iio_read_attr(d->dir, calibbias_attr[axis], got,
-					  sizeof(got)) < 0)
-			ret = -EIO;
-		if (ret)
-			return ftest_io_failed(x, step, calibbias_attr[axis], ret);
-		errno = 0;
-		lin = strtol(got, &end, 10);
-		if (errno || end == got || *end || lin < -AS9888_DAC_LIN_MAX ||
-		    lin > AS9888_DAC_LIN_MAX) {
-			ftest_judge(x, step, calibbias_attr[axis], false,
-				    "-67..67", "reads \"%s\"", got);
-			return -EIO;
-		}
-		x->dac[axis] = as9888_lin2dac(ga, (int)lin);
-		if (x->dac[axis] != dac[axis])
-			*same = false;
-	}
+	ret = iio_write_dac(d->dir, &x->res->ee, dac, got, err, sizeof(err));
+	if (ret)
+		return iio_failed(x, step, "DAC through calibbias", err, ret);
+	memcpy(x->dac, got, AS9888_AXES);
+	*same = !memcmp(got, dac, AS9888_AXES);
 
 	return 0;
 }
@@ -261,27 +271,12 @@ static int iio_step1(struct ftest_ctx *x)
 	return 0;
 }
 
-static int iio_step2(struct ftest_ctx *x)
+/* 2-17..2-23 on the adjusted readings of debugfs and the driver's verdict */
+static void judge_selftest_readings(struct ftest_ctx *x,
+				    const int32_t adj[AS9888_AXES], bool pass)
 {
-	struct iio_test_dev *d = x->dev;
-	int32_t adj[AS9888_AXES];
-	char val[IIO_ATTR_MAX];
-	bool pass = false, windows = true;
-	int axis, ret;
-
-	ftest_skip(x, "2-4", "INT2 pin check (D11)", "the driver does not use INT2");
-	ret = iio_write_attr(d->dir, "selftest", "1");
-	if (!ftest_judge(x, "2-4", "measurement completes", !ret,
-			 "the driver's selftest runs both measurements", "%s",
-			 ret ? strerror(-ret) : "done"))
-		return 0;
-	ret = iio_read_attr(d->dir, "selftest", val, sizeof(val));
-	if (ret < 0)
-		return ftest_io_failed(x, "2-15", "selftest result", ret);
-	if (!ftest_judge(x, "2-15", "self-test result readable",
-			 !iio_parse_selftest(val, &pass, adj), "pass|fail X Y Z",
-			 "\"%s\"", val))
-		return 0;
+	bool windows = true;
+	int axis;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		bool ok = as9888_selftest_window_ok(axis, adj[axis]);
@@ -289,7 +284,7 @@ static int iio_step2(struct ftest_ctx *x)
 		windows &= ok;
 		if (!ftest_judge_selftest_axis(x, axis, ok, adj[axis], "") &&
 		    x->stop)
-			return 0;
+			return;
 	}
 	/*
 	 * The driver also fails the test on a magnetometer overflow in the
@@ -304,6 +299,66 @@ static int iio_step2(struct ftest_ctx *x)
 		ftest_judge(x, "2-23", "driver's verdict agrees", !pass,
 			    "fail when a window is missed", "%s",
 			    pass ? "pass" : "fail");
+}
+
+/* Without the readings, the driver's verdict alone; said, never guessed */
+static void judge_selftest_verdict(struct ftest_ctx *x, bool pass,
+				   const char *unavailable)
+{
+	char why[JUDGMENT_TEXT_LEN];
+	int axis;
+
+	snprintf(why, sizeof(why),
+		 "reading not available (%s): judged by the driver", unavailable);
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		ftest_skip_selftest_axis(x, axis, why);
+	ftest_judge(x, "2-23", "self-test verdict of the driver", pass,
+		    "pass (windows of 2-17..2-22, no overflow, HST)",
+		    "%s; the adjusted readings were not seen (%s)",
+		    pass ? "pass" : "fail", unavailable);
+}
+
+static int iio_step2(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	enum iio_selftest_verdict verdict = IIO_SELFTEST_NONE;
+	int32_t adj[AS9888_AXES];
+	char val[IIO_ATTR_MAX], path[IIO_PATH_MAX], why[IIO_ERR_LEN];
+	int ret;
+
+	ftest_skip(x, "2-4", "INT2 pin check (D11)", "the driver does not use INT2");
+	ret = iio_write_attr(d->dir, "selftest", "1");
+	if (!ftest_judge(x, "2-4", "measurement completes", !ret,
+			 "the driver's selftest runs both measurements", "%s",
+			 ret ? strerror(-ret) : "done"))
+		return 0;
+	ret = iio_read_attr(d->dir, "selftest", val, sizeof(val));
+	if (ret < 0)
+		return ftest_io_failed(x, "2-15", "selftest result", ret);
+	if (!ftest_judge(x, "2-15", "self-test verdict readable",
+			 !iio_parse_selftest_verdict(val, &verdict) &&
+			 verdict != IIO_SELFTEST_NONE, "pass|fail after a test",
+			 "\"%s\"", val))
+		return 0;
+
+	ret = iio_read_debugfs(d->dir, IIO_SELFTEST_READINGS, val, sizeof(val),
+			       path, sizeof(path));
+	if (ret < 0) {
+		snprintf(why, sizeof(why), "%s: %s", path, strerror(-ret));
+	} else {
+		ret = iio_parse_selftest_readings(val, adj);
+		if (ret == -EINVAL &&
+		    !ftest_judge(x, "2-15", "self-test readings readable", false,
+				 "X Y Z, LSB with three decimals", "%s: \"%s\"",
+				 path, val) && x->stop)
+			return 0;
+		if (ret)
+			snprintf(why, sizeof(why), "%s reads \"%s\"", path, val);
+	}
+	if (ret)
+		judge_selftest_verdict(x, verdict == IIO_SELFTEST_PASS, why);
+	else
+		judge_selftest_readings(x, adj, verdict == IIO_SELFTEST_PASS);
 
 	return 0;
 }
@@ -365,6 +420,25 @@ static int setup_scan(struct ftest_ctx *x)
 	return 0;
 }
 
+/*
+ * What the driver compensates with: the EEPROM, its calibration as it
+ * reads now and (per run) the DAC in use
+ */
+static int read_compensation(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	char err[IIO_ERR_LEN];
+	int ret;
+
+	d->comp.ee = x->res->ee;
+	ret = iio_read_accel_cal(d->dir, &d->comp.cal, err, sizeof(err));
+	if (ret)
+		return iio_failed(x, "3-1", "driver's calibration readable", err,
+				  ret);
+
+	return 0;
+}
+
 static int iio_level_setup(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
@@ -373,9 +447,13 @@ static int iio_level_setup(struct ftest_ctx *x)
 
 	snprintf(rate, sizeof(rate), "%d", IIO_TEST_RATE_HZ);
 
-	ret = change_attr(d, "in_accel_filter_low_pass_en", x->o->lpf ? "1" : "0");
+	ret = change_attr(d, IIO_OVERSAMPLING_ATTR,
+			  x->o->lpf ? IIO_OVERSAMPLING_ALPF : IIO_OVERSAMPLING_OFF);
 	if (ret)
-		return ftest_io_failed(x, "3-1", "low-pass filter set-up", ret);
+		return ftest_io_failed(x, "3-1", IIO_OVERSAMPLING_ATTR, ret);
+	ret = read_compensation(x);
+	if (ret)
+		return ret;
 	if (!ftest_judge(x, "3-1", "data-ready trigger", !find_trigger(d),
 			 "the driver's INT1 trigger exists",
 			 *d->trigger ? "%s" :
@@ -396,9 +474,14 @@ static int iio_level_setup(struct ftest_ctx *x)
 	return 0;
 }
 
-/* Read @n samples from @fd into @r, at most until @deadline */
+/*
+ * Read @n samples from @fd into @r, at most until @deadline, each taken
+ * back to the chip's own output: -ERANGE with @why for a sample that
+ * cannot be
+ */
 static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
-			uint64_t deadline, struct level_run *r)
+			uint64_t deadline, struct level_run *r, char *why,
+			size_t whylen)
 {
 	struct iio_test_dev *d = x->dev;
 	uint8_t buf[IIO_SCAN_CHANNELS * sizeof(uint32_t)];
@@ -408,6 +491,7 @@ static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
 		struct pollfd pfd = { .fd = fd, .events = POLLIN };
 		uint64_t now = iio_now_ns(x);
 		struct chip_sample s = { 0 };
+		int16_t out[AS9888_AXES];
 		ssize_t got;
 		int axis;
 
@@ -429,8 +513,10 @@ static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
 			continue;
 		have = 0;
 		for (axis = 0; axis < AS9888_AXES; axis++)
-			s.acc[axis] = (int16_t)iio_scan_value(&d->layout[axis], buf);
+			out[axis] = (int16_t)iio_scan_value(&d->layout[axis], buf);
 		s.tmps = (uint8_t)iio_scan_value(&d->layout[AS9888_AXES], buf);
+		if (accel_raw_recover(&d->comp, out, s.tmps, s.acc, why, whylen))
+			return -ERANGE;
 		level_run_add(r, &s);
 	}
 
@@ -444,9 +530,11 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	uint64_t start = iio_now_ns(x);
 	uint64_t deadline = start + (uint64_t)n * 1000000000ULL / IIO_TEST_RATE_HZ +
 			    IIO_SAMPLE_SLACK_MS * NS_PER_MS;
+	char why[JUDGMENT_TEXT_LEN];
 	int fd, ret;
 
 	level_run_init(r);
+	memcpy(d->comp.da, x->dac, AS9888_AXES);
 	r->status_by_driver = true;
 	if (d->sample_bytes > IIO_SCAN_CHANNELS * sizeof(uint32_t))
 		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
@@ -458,10 +546,17 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 		close(fd);
 		return ftest_io_failed(x, step, "buffer/enable", ret);
 	}
-	ret = read_samples(x, fd, n, deadline, r);
+	ret = read_samples(x, fd, n, deadline, r, why, sizeof(why));
 	iio_write_attr(d->dir, "buffer/enable", "0");
 	close(fd);
 
+	if (ret == -ERANGE) {
+		ftest_judge(x, step, "chip's own reading recovered", false,
+			    "compensated sample within the driver's output",
+			    "sample %u: %s", r->n, why);
+		x->stop = true;
+		return ret;
+	}
 	if (ret == -ETIMEDOUT) {
 		ftest_judge(x, step, "samples delivered (INT1, ST1, EMPT)", false,
 			    "N samples from the data-ready trigger",
@@ -482,7 +577,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	return 0;
 }
 
-static int iio_write_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES])
+static int iio_level_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES])
 {
 	bool same;
 	int ret;
@@ -497,31 +592,43 @@ static int iio_write_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES])
 	return 0;
 }
 
-/*
- * Put every changed attribute back, in the order they were changed; the
- * calibration last, as calibbias writes shift it.
- */
+/* Put every changed attribute back, in the order they were saved */
 static void iio_finish(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
-	const struct saved_attr *cal = NULL;
 	unsigned int i;
 
 	iio_write_attr(d->dir, "buffer/enable", "0");
 	for (i = 0; i < d->n_saved; i++) {
 		const struct saved_attr *a = &d->saved[i];
 
-		if (!strcmp(a->name, "in_accel_calibration")) {
-			cal = a;
-			continue;
-		}
 		if (iio_write_attr(d->dir, a->name, a->value))
 			fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
 				d->dir, a->name, a->value);
 	}
-	if (cal && iio_write_attr(d->dir, cal->name, cal->value))
-		fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
-			d->dir, cal->name, cal->value);
+}
+
+/* calibbias, caliboffset and calibtemp as found; *@failed names a failure */
+static int save_calibration(struct iio_test_dev *d, const char **failed)
+{
+	const char *names[2 * AS9888_AXES + 1];
+	unsigned int i = 0;
+	int axis, ret;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		names[i++] = iio_calibbias_attr[axis];
+		names[i++] = iio_caliboffset_attr[axis];
+	}
+	names[i++] = IIO_CALIBTEMP_ATTR;
+	for (i = 0; i < sizeof(names) / sizeof(names[0]); i++) {
+		ret = save_attr(d, names[i]);
+		if (ret) {
+			*failed = names[i];
+			return ret;
+		}
+	}
+
+	return 0;
 }
 
 static const struct ftest_device_ops iio_ops = {
@@ -529,7 +636,7 @@ static const struct ftest_device_ops iio_ops = {
 	.step2 = iio_step2,
 	.level_setup = iio_level_setup,
 	.level_collect = iio_level_collect,
-	.write_dac = iio_write_dac,
+	.write_dac = iio_level_dac,
 	.finish = iio_finish,
 	.now_ns = iio_now_ns,
 	.sleep_ns = iio_sleep_ns,
@@ -541,7 +648,7 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	struct iio_test_dev *d;
 	struct ftest_ctx x = { .ops = &iio_ops, .o = o, .res = res };
 	char probe[IIO_PATH_MAX];
-	const char *base = strrchr(dir, '/');
+	const char *base = strrchr(dir, '/'), *failed;
 	int ret;
 
 	if (!base || strncmp(base + 1, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX)))
@@ -556,14 +663,14 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	d->scan_dir = access(probe, F_OK) ? "buffer0" : "scan_elements";
 
 	/*
-	 * Everything the test may change is saved before its first change,
-	 * the calibration too (calibbias writes shift it).
+	 * The DAC and the calibration are saved before anything changes;
+	 * the rest before its own first change
 	 */
-	ret = save_attr(d, "in_accel_calibration");
+	ret = save_calibration(d, &failed);
 	if (ret) {
-		free(d);
 		report_add(&res->report, "1-4", "device attributes", JUDGMENT_FAIL,
-			   NULL, "%s/in_accel_calibration: %s", dir, strerror(-ret));
+			   NULL, "%s/%s: %s", dir, failed, strerror(-ret));
+		free(d);
 		return ret;
 	}
 	x.dev = d;

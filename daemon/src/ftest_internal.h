@@ -110,6 +110,8 @@ int ftest_check_eeprom(struct ftest_ctx *x,
  */
 bool ftest_judge_selftest_axis(struct ftest_ctx *x, int axis, bool ok,
 			       int32_t adj_q8, const char *note);
+/* The same judgment not made: the reading is not available, @why */
+void ftest_skip_selftest_axis(struct ftest_ctx *x, int axis, const char *why);
 
 /* Steps 1..3 on @x's device, then its finish(); see ftest_run() */
 int ftest_engine_run(struct ftest_ctx *x);

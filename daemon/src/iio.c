@@ -9,17 +9,34 @@
 #include <unistd.h>
 
 #include "iio.h"
+#include "iio_value.h"
 #include "session.h"
 
-/* Beyond any adjusted reading: 4096 * (255 + 128) / 256 */
-#define IIO_SELFTEST_ABS_MAX	8192.0
+const char *const iio_calibbias_attr[AS9888_AXES] = {
+	"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
+};
 
+const char *const iio_caliboffset_attr[AS9888_AXES] = {
+	"in_accel_x_caliboffset", "in_accel_y_caliboffset",
+	"in_accel_z_caliboffset",
+};
+
+/* $@name when set and not empty, else @fallback */
+static const char *root_from_env(const char *name, const char *fallback)
+{
+	const char *root = getenv(name);
+
+	return root && *root ? root : fallback;
+}
 
 const char *iio_sysfs_root(void)
 {
-	const char *root = getenv("AS9888_SYSFS");
+	return root_from_env("AS9888_SYSFS", "/sys");
+}
 
-	return root && *root ? root : "/sys";
+const char *iio_debugfs_root(void)
+{
+	return root_from_env("AS9888_DEBUGFS", "/sys/kernel/debug");
 }
 
 int iio_read_attr(const char *dir, const char *name, char *buf, size_t size)
@@ -43,6 +60,19 @@ int iio_read_attr(const char *dir, const char *name, char *buf, size_t size)
 	return (int)n;
 }
 
+int iio_read_debugfs(const char *dir, const char *name, char *buf,
+		     size_t size, char *path, size_t path_size)
+{
+	const char *base = strrchr(dir, '/');
+	char ddir[IIO_PATH_MAX];
+
+	base = base ? base + 1 : dir;
+	snprintf(ddir, sizeof(ddir), "%s/iio/%s", iio_debugfs_root(), base);
+	snprintf(path, path_size, "%s/%s", ddir, name);
+
+	return iio_read_attr(ddir, name, buf, size);
+}
+
 int iio_write_attr(const char *dir, const char *name, const char *value)
 {
 	char path[IIO_PATH_MAX];
@@ -51,7 +81,8 @@ int iio_write_attr(const char *dir, const char *name, const char *value)
 	int fd;
 
 	snprintf(path, sizeof(path), "%s/%s", dir, name);
-	fd = open(path, O_WRONLY | O_CLOEXEC);
+	/* as a shell's "echo >": sysfs ignores O_TRUNC, a plain file needs it */
+	fd = open(path, O_WRONLY | O_TRUNC | O_CLOEXEC);
 	if (fd < 0)
 		return -errno;
 	n = write(fd, value, len);
@@ -162,70 +193,190 @@ int iio_restore(const char *record_path, const char *dir)
 	return iio_apply_record(dir, &rec);
 }
 
-int iio_apply_record(const char *dir, const struct calib_record *rec)
+/*
+ * @name below @dir as text into @buf: 0, or -errno with the attribute and
+ * the reason in @err
+ */
+static int read_text(const char *dir, const char *name, char *buf,
+		     size_t size, char *err, size_t errlen)
 {
-	static const char *const bias[AS9888_AXES] = {
-		"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
-	};
-	char want[IIO_ATTR_MAX], got[IIO_ATTR_MAX];
-	struct as9888_eeprom ee;
+	int ret = iio_read_attr(dir, name, buf, size);
+
+	if (ret < 0)
+		snprintf(err, errlen, "%s/%s: cannot read: %s", dir, name,
+			 strerror(-ret));
+
+	return ret < 0 ? ret : 0;
+}
+
+/*
+ * @name holds a decimal within @min..@max: a Q16 value with @q16 (as
+ * iio_q16_format() prints it), else an integer
+ */
+static int read_number(const char *dir, const char *name, bool q16, long min,
+		       long max, long *v, char *err, size_t errlen)
+{
+	char val[IIO_ATTR_MAX], lo[IIO_Q16_TEXT_MAX], hi[IIO_Q16_TEXT_MAX];
+	int32_t q;
+	int ret;
+
+	ret = read_text(dir, name, val, sizeof(val), err, errlen);
+	if (ret)
+		return ret;
+	if (q16) {
+		ret = iio_q16_parse(val, &q);
+		if (!ret && (q < min || q > max))
+			ret = -ERANGE;
+		if (!ret)
+			*v = q;
+		iio_q16_format((int32_t)min, lo, sizeof(lo));
+		iio_q16_format((int32_t)max, hi, sizeof(hi));
+	} else {
+		ret = iio_int_parse(val, min, max, v);
+		snprintf(lo, sizeof(lo), "%ld", min);
+		snprintf(hi, sizeof(hi), "%ld", max);
+	}
+	if (ret)
+		snprintf(err, errlen, "%s/%s reads \"%s\": %s (%s..%s)", dir, name,
+			 val, iio_value_strerror(ret), lo, hi);
+
+	return ret;
+}
+
+static int write_text(const char *dir, const char *name, const char *val,
+		      char *err, size_t errlen)
+{
+	int ret = iio_write_attr(dir, name, val);
+
+	if (ret)
+		snprintf(err, errlen, "%s/%s: cannot write \"%s\": %s", dir, name,
+			 val, strerror(-ret));
+
+	return ret;
+}
+
+int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
+		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
+		  char *err, size_t errlen)
+{
+	char want[IIO_ATTR_MAX];
 	int axis, ret;
 
-	as9888_eeprom_decode(rec->eeprom, &ee);
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		snprintf(want, sizeof(want), "%d",
-			 as9888_dac2lin(ee.axis[axis].ga, rec->dac[axis]));
-		ret = iio_write_attr(dir, bias[axis], want);
-		if (!ret)
-			ret = iio_read_attr(dir, bias[axis], got, sizeof(got)) < 0 ? -EIO :
-			      strcmp(want, got) ? -EIO : 0;
-		if (ret) {
-			fprintf(stderr, "as9888-calibd: %s/%s: cannot set %s: %s\n",
-				dir, bias[axis], want, strerror(-ret));
-			return ret;
-		}
-	}
+		uint8_t ga = ee->axis[axis].ga;
+		long lin;
 
-	snprintf(want, sizeof(want), "%d %d %d %d %d %d %d",
-		 rec->level_mean_q16[0], rec->level_mean_q16[1],
-		 rec->level_mean_q16[2], rec->t_level_mdegc, rec->gravity[0],
-		 rec->gravity[1], rec->gravity[2]);
-	ret = iio_write_attr(dir, "in_accel_calibration", want);
-	if (!ret)
-		ret = iio_read_attr(dir, "in_accel_calibration", got, sizeof(got)) < 0 ?
-		      -EIO : strcmp(want, got) ? -EIO : 0;
-	if (ret) {
-		fprintf(stderr, "as9888-calibd: %s/in_accel_calibration: cannot set \"%s\": %s\n",
-			dir, want, strerror(-ret));
-		return ret;
+		snprintf(want, sizeof(want), "%d", as9888_dac2lin(ga, da[axis]));
+		ret = write_text(dir, iio_calibbias_attr[axis], want, err, errlen);
+		if (!ret)
+			ret = read_number(dir, iio_calibbias_attr[axis], false,
+					  -AS9888_DAC_LIN_MAX, AS9888_DAC_LIN_MAX,
+					  &lin, err, errlen);
+		if (ret)
+			return ret;
+		got[axis] = as9888_lin2dac(ga, (int)lin);
 	}
 
 	return 0;
 }
 
-int iio_parse_selftest(const char *s, bool *pass, int32_t adj_q8[AS9888_AXES])
+int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
+		       char *err, size_t errlen)
 {
-	char verdict[8], tail;
-	double v[AS9888_AXES];
-	int axis;
+	struct as9888_accel_cal c;
+	long v;
+	int axis, ret;
 
-	if (sscanf(s, "%7s %lf %lf %lf %c", verdict, &v[0], &v[1], &v[2],
-		   &tail) != 4)
-		return -EINVAL;
-	if (!strcmp(verdict, "pass"))
-		*pass = true;
-	else if (!strcmp(verdict, "fail"))
-		*pass = false;
-	else
-		return -EINVAL;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		/* 1/1000 rounding is finer than 1/256: the Q8 value is exact */
-		if (!(v[axis] > -IIO_SELFTEST_ABS_MAX &&
-		      v[axis] < IIO_SELFTEST_ABS_MAX))
-			return -EINVAL;
-		adj_q8[axis] = (int32_t)(v[axis] * AS9888_Q8_ONE +
-					 (v[axis] < 0 ? -0.5 : 0.5));
+		ret = read_number(dir, iio_caliboffset_attr[axis], true,
+				  -AS9888_CAL_OFFSET_MAX_Q16,
+				  AS9888_CAL_OFFSET_MAX_Q16, &v, err, errlen);
+		if (ret)
+			return ret;
+		c.offset_q16[axis] = (int32_t)v;
+	}
+	ret = read_number(dir, IIO_CALIBTEMP_ATTR, false,
+			  as9888_tmps_to_mdegc(AS9888_TMPS_MAX),
+			  as9888_tmps_to_mdegc(AS9888_TMPS_MIN), &v, err, errlen);
+	if (ret)
+		return ret;
+	c.t_mdegc = (int32_t)v;
+	*cal = c;
+
+	return 0;
+}
+
+int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
+			char *err, size_t errlen)
+{
+	struct as9888_accel_cal got;
+	char val[IIO_ATTR_MAX];
+	int axis, ret;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		ret = iio_q16_format(cal->offset_q16[axis], val, sizeof(val));
+		if (!ret)
+			ret = write_text(dir, iio_caliboffset_attr[axis], val, err,
+					 errlen);
+		if (ret)
+			return ret;
+	}
+	snprintf(val, sizeof(val), "%d", cal->t_mdegc);
+	ret = write_text(dir, IIO_CALIBTEMP_ATTR, val, err, errlen);
+	if (!ret)
+		ret = iio_read_accel_cal(dir, &got, err, errlen);
+	if (ret)
+		return ret;
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		if (got.offset_q16[axis] != cal->offset_q16[axis]) {
+			char back[IIO_Q16_TEXT_MAX];
+
+			iio_q16_format(cal->offset_q16[axis], val, sizeof(val));
+			iio_q16_format(got.offset_q16[axis], back, sizeof(back));
+			snprintf(err, errlen, "%s/%s: wrote %s, reads back %s",
+				 dir, iio_caliboffset_attr[axis], val, back);
+			return -EIO;
+		}
+	if (got.t_mdegc != cal->t_mdegc) {
+		snprintf(err, errlen, "%s/%s: wrote %d, reads back %d", dir,
+			 IIO_CALIBTEMP_ATTR, cal->t_mdegc, got.t_mdegc);
+		return -EIO;
 	}
 
 	return 0;
+}
+
+int iio_apply_record(const char *dir, const struct calib_record *rec)
+{
+	struct as9888_accel_cal cal;
+	struct as9888_eeprom ee;
+	uint8_t got[AS9888_AXES];
+	char err[IIO_ERR_LEN];
+	int ret;
+
+	ret = as9888_eeprom_decode(rec->eeprom, &ee);
+	if (!ret)
+		ret = as9888_accel_cal_from_level(&ee, rec->level_mean_q16,
+						  rec->t_level_mdegc,
+						  rec->gravity, rec->dac, &cal);
+	if (ret) {
+		fprintf(stderr, "as9888-calibd: the record's level test gives no calibration: %s; nothing applied to %s\n",
+			strerror(-ret), dir);
+		return ret;
+	}
+
+	ret = iio_write_dac(dir, &ee, rec->dac, got, err, sizeof(err));
+	if (!ret && memcmp(got, rec->dac, AS9888_AXES)) {
+		snprintf(err, sizeof(err),
+			 "%s: calibbias reads back DAC 0x%02x 0x%02x 0x%02x, not the record's 0x%02x 0x%02x 0x%02x",
+			 dir, got[0], got[1], got[2], rec->dac[0], rec->dac[1],
+			 rec->dac[2]);
+		ret = -EIO;
+	}
+	if (!ret)
+		ret = iio_write_accel_cal(dir, &cal, err, sizeof(err));
+	if (ret)
+		fprintf(stderr, "as9888-calibd: %s\n", err);
+
+	return ret;
 }

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * The AS9888 IIO driver's interfaces as the daemon uses them: finding the
- * device in sysfs, its EEPROM through NVMEM, and applying a record through
- * in_accel_*_calibbias and in_accel_calibration
+ * device in sysfs, its EEPROM through NVMEM, its debugfs files, the offset
+ * DAC (in_accel_*_calibbias) and the calibration (in_accel_*_caliboffset,
+ * in_accel_calibtemp), and applying a record through them
  * (Documentation/ABI/testing/sysfs-bus-iio-as9888).
  */
 #ifndef AS9888_IIO_H
@@ -15,14 +16,24 @@
 #include "record.h"
 
 #define IIO_PATH_MAX	512
-/* Longest attribute value the daemon reads or writes (in_accel_calibration) */
+/* Longest attribute value the daemon reads or writes */
 #define IIO_ATTR_MAX	128
+/* Longest message of the functions below that return one */
+#define IIO_ERR_LEN	(2 * IIO_PATH_MAX)
 #define IIO_DEVICE_NAME	"as9888"
 #define IIO_DEVICE_PREFIX	"iio:device"
 #define IIO_TRIGGER_PREFIX	"trigger"
 
+/* The accelerometer's offset DAC and calibration attributes */
+extern const char *const iio_calibbias_attr[AS9888_AXES];
+extern const char *const iio_caliboffset_attr[AS9888_AXES];
+#define IIO_CALIBTEMP_ATTR	"in_accel_calibtemp"
+
 /* The sysfs root: $AS9888_SYSFS, default /sys */
 const char *iio_sysfs_root(void);
+
+/* The debugfs root: $AS9888_DEBUGFS, default /sys/kernel/debug */
+const char *iio_debugfs_root(void);
 
 /*
  * The sysfs directory of an AS9888 IIO device: the one at or below
@@ -39,29 +50,59 @@ int iio_read_attr(const char *dir, const char *name, char *buf, size_t size);
 int iio_write_attr(const char *dir, const char *name, const char *value);
 
 /*
+ * The driver's debugfs file @name of the device at @dir
+ * (<debugfs>/iio/iio:deviceN/@name), read like iio_read_attr(). @path
+ * receives the file's path, for messages.
+ */
+int iio_read_debugfs(const char *dir, const char *name, char *buf,
+		     size_t size, char *path, size_t path_size);
+
+/*
  * The EEPROM of the device at @dir through the driver's NVMEM provider
  * "as9888-eeprom<N>", a sibling of iio:device<N> below the bus device.
  */
 int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN]);
 
 /*
- * The selftest attribute's "pass|fail X Y Z" (readings with three
- * decimals): the verdict and the readings back in Q8, exactly (1/1000 is
- * finer than 1/256). 0 or -EINVAL.
+ * Write the DAC register values @da (linear codes with @ee's gains) to
+ * in_accel_*_calibbias and read them back as register values into @got
+ * (compare them: the driver may refuse a value silently). 0, or -errno
+ * with the attribute and the reason in @err.
  */
-int iio_parse_selftest(const char *s, bool *pass, int32_t adj_q8[AS9888_AXES]);
+int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
+		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
+		  char *err, size_t errlen);
 
 /*
- * Write @rec's DAC values and level data into the device at @dir (no
- * identity check) and read both back. 0 or -errno, said on stderr.
+ * The driver's calibration: in_accel_{x,y,z}_caliboffset (Q16 exactly,
+ * within +-AS9888_CAL_OFFSET_MAX_LSB) and in_accel_calibtemp
+ * (millidegrees, -30..85 degC). 0, or -errno with the attribute, what it
+ * reads and why it is refused in @err.
+ */
+int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
+		       char *err, size_t errlen);
+
+/*
+ * Write @cal into those attributes and read every value back: 0 when all
+ * read back exactly, else -errno with the reason in @err.
+ */
+int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
+			char *err, size_t errlen);
+
+/*
+ * Put @rec in effect in the device at @dir (no identity check): its DAC
+ * values into calibbias, and the calibration its level test gives
+ * (as9888_accel_cal_from_level() with the DAC values the level test ran
+ * with, the record's) into caliboffset and calibtemp; everything read
+ * back. Nothing is written when the record gives no calibration. 0 or
+ * -errno, said on stderr.
  */
 int iio_apply_record(const char *dir, const struct calib_record *rec);
 
 /*
  * Apply the record at @record_path to the device at @dir: refuse it unless
- * the device's EEPROM equals the record's, then write the DAC values and
- * the level data, and read both back. Returns 0 or -errno; says why on
- * stderr.
+ * the device's EEPROM equals the record's, then iio_apply_record().
+ * Returns 0 or -errno; says why on stderr.
  */
 int iio_restore(const char *record_path, const char *dir);
 

@@ -51,9 +51,14 @@ printf 'as9888\n' >"$dev/name"
 printf 'bmc150_accel\n' >"$sys/devices/i2c/1-0050/iio:device1/name"
 printf '\x9a\x71\x15\x5c\x80\x85\x7b\x1c\x63\xa2\x38\xe6\x9c\x0d\x8f\x8c\x04\x65\xc3\x88\x50' \
 	>"$bus/as9888-eeprom0/nvmem"
+# the driver's state after probe, but for a calibration temperature no
+# record here has (85 degC), so that applying one shows
 reset_attrs() {
-	for a in x y z; do printf '0\n' >"$dev/in_accel_${a}_calibbias"; done
-	printf 'none\n' >"$dev/in_accel_calibration"
+	for a in x y z; do
+		printf '0\n' >"$dev/in_accel_${a}_calibbias"
+		printf '0.000000\n' >"$dev/in_accel_${a}_caliboffset"
+	done
+	printf '85000\n' >"$dev/in_accel_calibtemp"
 }
 reset_attrs
 export AS9888_SYSFS=$sys
@@ -67,7 +72,12 @@ sock=$work/sock
 pid=$!
 for _ in $(seq 100); do [ -S "$sock" ] && break; sleep 0.05; done
 
-applied() { grep -q ' 0 0 -1$' "$dev/in_accel_calibration"; }
+# the record's t_level in millidegrees, and a level-test offset in Z
+t_level=$(awk '$1 == "t_level" { printf "%d", $3 * 1000 + ($3 < 0 ? -0.5 : 0.5) }' "$rec")
+applied() {
+	[ "$(cat "$dev/in_accel_calibtemp")" = "$t_level" ] &&
+		[ "$(cat "$dev/in_accel_z_caliboffset")" != 0.000000 ]
+}
 wait_applied() {
 	for _ in $(seq 200); do applied && return 0; sleep 0.01; done
 	return 1

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * What the test engine reads from the driver's sysfs values: buffer sample
- * layouts from _index/_type, values from sample bytes, and the selftest
- * attribute. Bad values are refused, never half-used.
+ * What the test engine reads from the driver's buffer: sample layouts from
+ * _index/_type and values from sample bytes. Bad types are refused, never
+ * half-used.
  */
 #include <errno.h>
 #include <setjmp.h>
@@ -13,7 +13,6 @@
 
 #include <cmocka.h>
 
-#include "iio.h"
 #include "iio_scan.h"
 
 static void type_accepted(void **state)
@@ -120,39 +119,6 @@ static void values(void **state)
 	assert_int_equal(iio_scan_value(&c, sample), -16);
 }
 
-static void selftest_result(void **state)
-{
-	int32_t adj[3] = { 0 };
-	bool pass = false;
-
-	assert_int_equal(iio_parse_selftest("pass -19.922 15.234 598.828", &pass,
-					    adj), 0);
-	assert_true(pass);
-	/* the exact Q8 readings the driver printed rounded to 1/1000 */
-	assert_int_equal(adj[0], -5100);
-	assert_int_equal(adj[1], 3900);
-	assert_int_equal(adj[2], 153300);
-	assert_int_equal(iio_parse_selftest("fail 0.000 0.000 16.668", &pass, adj), 0);
-	assert_false(pass);
-	assert_int_equal(adj[2], 4267);
-}
-
-static void selftest_refused(void **state)
-{
-	static const char *const bad[] = {
-		"", "none", "pass", "pass 1 2", "pass 1 2 3 4", "maybe 1 2 3",
-		"pass nan 0 0", "pass inf 0 0", "pass 1e9 0 0", "pass 1 2 x",
-		"passed 1 2 3",
-	};
-	int32_t adj[3] = { 7, 7, 7 };
-	bool pass = true;
-	size_t i;
-
-	for (i = 0; i < sizeof(bad) / sizeof(bad[0]); i++)
-		if (iio_parse_selftest(bad[i], &pass, adj) != -EINVAL)
-			fail_msg("accepted \"%s\"", bad[i]);
-}
-
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -162,8 +128,6 @@ int main(void)
 		cmocka_unit_test(layout_aligns),
 		cmocka_unit_test(layout_refuses_duplicate_index),
 		cmocka_unit_test(values),
-		cmocka_unit_test(selftest_result),
-		cmocka_unit_test(selftest_refused),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -2,10 +2,11 @@
 /*
  * Kernel uevent parsing and the IIO restore path against a sysfs tree laid
  * out like the driver's (iio:deviceN with its attributes, the NVMEM
- * provider beside it, the bus/iio/devices symlink).
+ * provider beside it, the bus/iio/devices symlink) and a debugfs tree:
+ * what a record puts into calibbias, caliboffset and calibtemp, and the
+ * driver's values the daemon refuses to read.
  */
 #include <errno.h>
-#include <fcntl.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -17,6 +18,7 @@
 
 #include <cmocka.h>
 
+#include "fake_sysfs.h"
 #include "iio.h"
 #include "record.h"
 #include "uevent.h"
@@ -87,141 +89,218 @@ static void parse_garbage(void **state)
 	assert_int_equal(strlen(ev.subsystem), sizeof(ev.subsystem) - 1);
 }
 
-static const uint8_t example[AS9888_EEPROM_LEN] = {
-	0x9a, 0x71, 0x15, 0x5c, 0x80, 0x85, 0x7b, 0x1c, 0x63, 0xa2, 0x38,
-	0xe6, 0x9c, 0x0d, 0x8f, 0x8c, 0x04, 0x65, 0xc3, 0x88, 0x50,
+static const struct calib_record test_record = {
+	.dac = { 0x0f, 0x8e, 0x8c },
+	.level_mean_q16 = { -26214, 6553, 258 * 65536 + 6554 },
+	.t_level_mdegc = 24583,
+	.gravity = { 0, 0, -1 },
+	.samples = 16,
+	.created = 1795305600,
 };
 
-static char root[64], devdir[256];
-
-static void put(const char *dir, const char *name, const void *data, size_t len)
+static void write_record(const struct fake_sysfs *f, const char *path,
+			 const uint8_t *eeprom)
 {
-	char path[1024];
-	int fd;
-
-	assert_true(snprintf(path, sizeof(path), "%s/%s", dir, name) < (int)sizeof(path));
-	fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-	assert_true(fd >= 0);
-	assert_int_equal(write(fd, data, len), (ssize_t)len);
-	close(fd);
-}
-
-static void get(const char *dir, const char *name, char *buf, size_t size)
-{
-	char path[1024];
-	ssize_t n;
-	int fd;
-
-	assert_true(snprintf(path, sizeof(path), "%s/%s", dir, name) < (int)sizeof(path));
-	fd = open(path, O_RDONLY);
-	assert_true(fd >= 0);
-	n = read(fd, buf, size - 1);
-	assert_true(n >= 0);
-	buf[n] = '\0';
-	close(fd);
-}
-
-/* $root/devices/i2c/1-000c/{iio:device0,as9888-eeprom0}, bus/iio/devices/iio:device0 -> */
-static int make_tree(void **state)
-{
-	char path[1024];
-
-	snprintf(root, sizeof(root), "/tmp/as9888-sysfs-XXXXXX");
-	assert_non_null(mkdtemp(root));
-	snprintf(devdir, sizeof(devdir), "%s/devices/i2c/1-000c/iio:device0", root);
-	snprintf(path, sizeof(path), "mkdir -p '%s' '%s/devices/i2c/1-000c/as9888-eeprom0' '%s/bus/iio/devices'",
-		 devdir, root, root);
-	assert_int_equal(system(path), 0);
-	snprintf(path, sizeof(path), "%s/bus/iio/devices/iio:device0", root);
-	assert_int_equal(symlink("../../../devices/i2c/1-000c/iio:device0", path), 0);
-	put(devdir, "name", "as9888\n", 7);
-	put(devdir, "in_accel_x_calibbias", "0\n", 2);
-	put(devdir, "in_accel_y_calibbias", "0\n", 2);
-	put(devdir, "in_accel_z_calibbias", "0\n", 2);
-	put(devdir, "in_accel_calibration", "none\n", 5);
-	snprintf(path, sizeof(path), "%s/devices/i2c/1-000c/as9888-eeprom0", root);
-	put(path, "nvmem", example, sizeof(example));
-	setenv("AS9888_SYSFS", root, 1);
-	return 0;
-}
-
-static int remove_tree(void **state)
-{
-	char cmd[128];
-
-	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", root);
-	return system(cmd);
-}
-
-static void write_record(const char *path, const uint8_t *eeprom)
-{
-	struct calib_record rec = {
-		.dac = { 0x0f, 0x8e, 0x8c },
-		.level_mean_q16 = { -26214, 6553, 258 * 65536 + 6554 },
-		.t_level_mdegc = 24583,
-		.gravity = { 0, 0, -1 },
-		.samples = 16,
-		.created = 1795305600,
-	};
+	struct calib_record rec = test_record;
 	char buf[RECORD_MAX_SIZE];
 	int len;
 
 	memcpy(rec.eeprom, eeprom, AS9888_EEPROM_LEN);
 	len = record_format(&rec, buf, sizeof(buf));
 	assert_true(len > 0);
-	put(root, path, buf, (size_t)len);
+	fake_put_bytes(f->root, path, buf, (size_t)len);
 }
 
 static void find_device(void **state)
 {
+	struct fake_sysfs *f = *state;
 	char dir[IIO_PATH_MAX], want[IIO_PATH_MAX];
 
 	assert_int_equal(iio_find_device(NULL, dir, sizeof(dir)), 0);
-	snprintf(want, sizeof(want), "%s/bus/iio/devices/iio:device0", root);
+	snprintf(want, sizeof(want), "%s/bus/iio/devices/iio:device0", f->root);
 	assert_string_equal(dir, want);
 	assert_int_equal(iio_find_device("/devices/i2c/1-000c/iio:device0", dir,
 					 sizeof(dir)), 0);
-	assert_string_equal(dir, devdir);
+	assert_string_equal(dir, f->dev);
 	/* a bind of the bus device finds the IIO device below it */
 	assert_int_equal(iio_find_device("/devices/i2c/1-000c", dir, sizeof(dir)), 0);
-	assert_string_equal(dir, devdir);
+	assert_string_equal(dir, f->dev);
 	assert_int_equal(iio_find_device("/devices/i2c/1-000d", dir, sizeof(dir)),
 			 -ENOENT);
 	assert_int_equal(iio_find_device("/devices/i2c/1-000c/../1-000c", dir,
 					 sizeof(dir)), -ENOENT);
 }
 
+static void expect(const struct fake_sysfs *f, const char *name,
+		   const char *want)
+{
+	char buf[128];
+
+	fake_get(f->dev, name, buf, sizeof(buf));
+	if (strcmp(buf, want))
+		fail_msg("%s reads \"%s\", not \"%s\"", name, buf, want);
+}
+
 static void restore_applies(void **state)
 {
-	char path[256], buf[128];
+	struct fake_sysfs *f = *state;
+	char path[256];
 
-	write_record("cal", example);
-	snprintf(path, sizeof(path), "%s/cal", root);
-	assert_int_equal(iio_restore(path, devdir), 0);
+	fake_reset_calibration(f);
+	write_record(f, "cal", fake_example_eeprom);
+	snprintf(path, sizeof(path), "%s/cal", f->root);
+	assert_int_equal(iio_restore(path, f->dev), 0);
 	/* X: EAXGA 0x1c, DAC 0x0f -> linear -15; Y polarity: 0x8e -> -14 */
-	get(devdir, "in_accel_x_calibbias", buf, sizeof(buf));
-	assert_string_equal(buf, "-15");
-	get(devdir, "in_accel_y_calibbias", buf, sizeof(buf));
-	assert_string_equal(buf, "-14");
-	get(devdir, "in_accel_z_calibbias", buf, sizeof(buf));
-	assert_string_equal(buf, "12");
-	get(devdir, "in_accel_calibration", buf, sizeof(buf));
-	assert_string_equal(buf, "-26214 6553 16914842 24583 0 0 -1");
+	expect(f, "in_accel_x_calibbias", "-15");
+	expect(f, "in_accel_y_calibbias", "-14");
+	expect(f, "in_accel_z_calibbias", "12");
+	/*
+	 * Ot_L = A + St(t_L) G with the record's DAC, moved to the factory
+	 * DAC (EAxDA 0x0d 0x8f 0x8c: linear -13 -15 12) by one DAC step per
+	 * linear code (2048 / (gain + 16) LSB):
+	 *   X: -26214 + (-13 - -15) * 3050403 = 6074592 = 92.690918 LSB
+	 *   Y:   6553 + (-15 - -14) * 2631720 = -2625167 = -40.056870 LSB
+	 *   Z: 16914842 - St 16950406 (no DAC change) = -35564 = -0.542664 LSB
+	 */
+	expect(f, "in_accel_x_caliboffset", "92.690918");
+	expect(f, "in_accel_y_caliboffset", "-40.056870");
+	expect(f, "in_accel_z_caliboffset", "-0.542664");
+	expect(f, "in_accel_calibtemp", "24583");
 }
 
 static void restore_refuses_other_chip(void **state)
 {
+	struct fake_sysfs *f = *state;
 	uint8_t other[AS9888_EEPROM_LEN];
-	char path[256], buf[128];
+	char path[256];
 
-	memcpy(other, example, sizeof(other));
+	memcpy(other, fake_example_eeprom, sizeof(other));
 	other[AS9888_EE_EHC(0)] ^= 1;
-	put(devdir, "in_accel_calibration", "none\n", 5);
-	write_record("other", other);
-	snprintf(path, sizeof(path), "%s/other", root);
-	assert_int_equal(iio_restore(path, devdir), -ENODEV);
-	get(devdir, "in_accel_calibration", buf, sizeof(buf));
-	assert_string_equal(buf, "none\n");
+	fake_reset_calibration(f);
+	write_record(f, "other", other);
+	snprintf(path, sizeof(path), "%s/other", f->root);
+	assert_int_equal(iio_restore(path, f->dev), -ENODEV);
+	expect(f, "in_accel_x_caliboffset", "0.000000\n");
+	expect(f, "in_accel_calibtemp", "23750\n");
+}
+
+/* A record whose level data give no calibration changes nothing */
+static void apply_refuses_uncomputable_record(void **state)
+{
+	struct fake_sysfs *f = *state;
+	struct calib_record rec = test_record;
+
+	memcpy(rec.eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
+	fake_reset_calibration(f);
+	fake_put(f->dev, "in_accel_x_calibbias", "0\n");
+	rec.t_level_mdegc = 90000;
+	assert_int_equal(iio_apply_record(f->dev, &rec), -ERANGE);
+	expect(f, "in_accel_x_calibbias", "0\n");
+	expect(f, "in_accel_calibtemp", "23750\n");
+}
+
+/* A calibration attribute that cannot be written fails the apply */
+static void apply_reports_write_failure(void **state)
+{
+	struct fake_sysfs *f = *state;
+	struct calib_record rec = test_record;
+	char path[1024];
+
+	memcpy(rec.eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
+	snprintf(path, sizeof(path), "%s/in_accel_calibtemp", f->dev);
+	assert_int_equal(unlink(path), 0);
+	assert_int_equal(mkdir(path, 0755), 0);
+	assert_int_equal(iio_apply_record(f->dev, &rec), -EISDIR);
+	assert_int_equal(rmdir(path), 0);
+	fake_reset_calibration(f);
+}
+
+/* The driver's calibration as read: every value checked */
+static void read_calibration(void **state)
+{
+	struct fake_sysfs *f = *state;
+	struct as9888_accel_cal cal;
+	char err[IIO_ERR_LEN];
+
+	fake_reset_calibration(f);
+	fake_put(f->dev, "in_accel_y_caliboffset", "-0.000015\n");
+	fake_put(f->dev, "in_accel_z_caliboffset", "-8192.000000\n");
+	fake_put(f->dev, "in_accel_calibtemp", "-30000\n");
+	assert_int_equal(iio_read_accel_cal(f->dev, &cal, err, sizeof(err)), 0);
+	assert_int_equal(cal.offset_q16[0], 0);
+	assert_int_equal(cal.offset_q16[1], -1);
+	assert_int_equal(cal.offset_q16[2], -AS9888_CAL_OFFSET_MAX_Q16);
+	assert_int_equal(cal.t_mdegc, -30000);
+	fake_reset_calibration(f);
+}
+
+static void refused(const struct fake_sysfs *f, const char *name,
+		    const char *value, const char *why)
+{
+	struct as9888_accel_cal cal = { .t_mdegc = 4711 };
+	char err[IIO_ERR_LEN], quoted[64];
+
+	fake_reset_calibration(f);
+	fake_put(f->dev, name, value);
+	if (!iio_read_accel_cal(f->dev, &cal, err, sizeof(err)))
+		fail_msg("%s \"%s\" accepted", name, value);
+	/* the message names the attribute, the value and the reason */
+	snprintf(quoted, sizeof(quoted), "/%s reads \"%.*s\": ", name,
+		 (int)strcspn(value, "\n"), value);
+	if (!strstr(err, quoted) || !strstr(err, why))
+		fail_msg("%s \"%s\": unclear error \"%s\"", name, value, err);
+	assert_int_equal(cal.t_mdegc, 4711);
+}
+
+static void read_calibration_refuses_bad_values(void **state)
+{
+	struct fake_sysfs *f = *state;
+	static const char *const malformed[] = {
+		"abc\n", "1.2.3\n", "\n", "", "-\n", "1.5 2\n", "0x10\n",
+		"1.0000001\n",
+	};
+	size_t i;
+
+	for (i = 0; i < sizeof(malformed) / sizeof(malformed[0]); i++) {
+		refused(f, "in_accel_y_caliboffset", malformed[i], "malformed");
+		refused(f, "in_accel_calibtemp", malformed[i], "malformed");
+	}
+	refused(f, "in_accel_x_caliboffset", "99999999999\n", "out of range");
+	refused(f, "in_accel_z_caliboffset", "8192.000016\n", "out of range");
+	refused(f, "in_accel_z_caliboffset", "-8192.000016\n", "out of range");
+	refused(f, "in_accel_calibtemp", "99999999999\n", "out of range");
+	refused(f, "in_accel_calibtemp", "85001\n", "out of range (-30000..85000)");
+	refused(f, "in_accel_calibtemp", "-30001\n", "out of range");
+	refused(f, "in_accel_calibtemp", "25.5\n", "malformed");
+	fake_reset_calibration(f);
+}
+
+static void debugfs_file(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char dir[512], buf[64], path[IIO_PATH_MAX], want[IIO_PATH_MAX];
+
+	unsetenv("AS9888_DEBUGFS");
+	assert_string_equal(iio_debugfs_root(), "/sys/kernel/debug");
+	setenv("AS9888_DEBUGFS", "", 1);
+	assert_string_equal(iio_debugfs_root(), "/sys/kernel/debug");
+
+	fake_mkdir(f->root, "debug/iio/iio:device0");
+	snprintf(dir, sizeof(dir), "%s/debug", f->root);
+	setenv("AS9888_DEBUGFS", dir, 1);
+	snprintf(dir, sizeof(dir), "%s/debug/iio/iio:device0", f->root);
+	fake_put(dir, "selftest_readings", "-19.922 15.234 598.828\n");
+	/* the device as the bus link names it: the same debugfs directory */
+	snprintf(dir, sizeof(dir), "%s/bus/iio/devices/iio:device0", f->root);
+	assert_int_equal(iio_read_debugfs(dir, "selftest_readings", buf,
+					  sizeof(buf), path, sizeof(path)), 22);
+	assert_string_equal(buf, "-19.922 15.234 598.828");
+	snprintf(want, sizeof(want), "%s/debug/iio/iio:device0/selftest_readings",
+		 f->root);
+	assert_string_equal(path, want);
+	assert_int_equal(iio_read_debugfs(dir, "nothing", buf, sizeof(buf), path,
+					  sizeof(path)), -ENOENT);
+	unsetenv("AS9888_DEBUGFS");
 }
 
 int main(void)
@@ -234,7 +313,13 @@ int main(void)
 		cmocka_unit_test(find_device),
 		cmocka_unit_test(restore_applies),
 		cmocka_unit_test(restore_refuses_other_chip),
+		cmocka_unit_test(apply_refuses_uncomputable_record),
+		cmocka_unit_test(apply_reports_write_failure),
+		cmocka_unit_test(read_calibration),
+		cmocka_unit_test(read_calibration_refuses_bad_values),
+		cmocka_unit_test(debugfs_file),
 	};
 
-	return cmocka_run_group_tests_name("uevent-iio", tests, make_tree, remove_tree);
+	return cmocka_run_group_tests_name("uevent-iio", tests, fake_sysfs_setup,
+					  fake_sysfs_teardown);
 }

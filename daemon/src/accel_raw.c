@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: GPL-2.0
+/* The chip's own accelerometer output behind compensated samples (accel_raw.h). */
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "accel_raw.h"
+
+static const char axis_name[] = "XYZ";
+
+int accel_raw_recover(const struct accel_comp *c,
+		      const int16_t out[AS9888_AXES], uint8_t tmps,
+		      int16_t raw[AS9888_AXES], char *why, size_t whylen)
+{
+	int32_t t_mdegc = as9888_tmps_to_mdegc(tmps);
+	int16_t r[AS9888_AXES];
+	int axis, ret;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		int32_t ot_q16, st_q16;
+
+		ret = as9888_accel_correction(&c->ee, &c->cal, axis, c->da[axis],
+					      t_mdegc, &ot_q16, &st_q16);
+		if (ret) {
+			snprintf(why, whylen,
+				 "%c: no offset/sensitivity at TMPS 0x%02x with DAC 0x%02x: %s",
+				 axis_name[axis], tmps, c->da[axis],
+				 strerror(-ret));
+			return -EINVAL;
+		}
+		if (out[axis] <= AS9888_ACC_OUT_MIN ||
+		    out[axis] >= AS9888_ACC_OUT_MAX) {
+			snprintf(why, whylen,
+				 "%c reads %d, the limit of the driver's output: the chip's own reading cannot be recovered (saturated)",
+				 axis_name[axis], out[axis]);
+			return -ERANGE;
+		}
+		ret = as9888_accel_uncompensate(out[axis], ot_q16, st_q16,
+						&r[axis]);
+		if (ret) {
+			snprintf(why, whylen,
+				 "%c reads %d, which no chip reading gives with the driver's calibration as read (was it changed during the test?)",
+				 axis_name[axis], out[axis]);
+			return -ERANGE;
+		}
+	}
+	memcpy(raw, r, sizeof(r));
+
+	return 0;
+}

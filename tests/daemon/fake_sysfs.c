@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: GPL-2.0
+/* A sysfs tree laid out like the AS9888 driver's (fake_sysfs.h). */
+#include <fcntl.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "fake_sysfs.h"
+
+const uint8_t fake_example_eeprom[AS9888_EEPROM_LEN] = {
+	0x9a, 0x71, 0x15, 0x5c, 0x80, 0x85, 0x7b, 0x1c, 0x63, 0xa2, 0x38,
+	0xe6, 0x9c, 0x0d, 0x8f, 0x8c, 0x04, 0x65, 0xc3, 0x88, 0x50,
+};
+
+void fake_put_bytes(const char *dir, const char *name, const void *data,
+		    size_t len)
+{
+	char path[1024];
+	int fd;
+
+	assert_true(snprintf(path, sizeof(path), "%s/%s", dir, name) < (int)sizeof(path));
+	fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+	assert_true(fd >= 0);
+	assert_int_equal(write(fd, data, len), (ssize_t)len);
+	close(fd);
+}
+
+void fake_put(const char *dir, const char *name, const char *text)
+{
+	fake_put_bytes(dir, name, text, strlen(text));
+}
+
+void fake_get(const char *dir, const char *name, char *buf, size_t size)
+{
+	char path[1024];
+	ssize_t n;
+	int fd;
+
+	assert_true(snprintf(path, sizeof(path), "%s/%s", dir, name) < (int)sizeof(path));
+	fd = open(path, O_RDONLY);
+	assert_true(fd >= 0);
+	n = read(fd, buf, size - 1);
+	assert_true(n >= 0);
+	buf[n] = '\0';
+	close(fd);
+}
+
+void fake_mkdir(const char *dir, const char *sub)
+{
+	char cmd[1100];
+
+	assert_true(snprintf(cmd, sizeof(cmd), "mkdir -p '%s/%s'", dir, sub) <
+		    (int)sizeof(cmd));
+	assert_int_equal(system(cmd), 0);
+}
+
+void fake_reset_calibration(const struct fake_sysfs *f)
+{
+	fake_put(f->dev, "in_accel_x_caliboffset", "0.000000\n");
+	fake_put(f->dev, "in_accel_y_caliboffset", "0.000000\n");
+	fake_put(f->dev, "in_accel_z_caliboffset", "0.000000\n");
+	fake_put(f->dev, "in_accel_calibtemp", "23750\n");
+}
+
+int fake_sysfs_setup(void **state)
+{
+	struct fake_sysfs *f = calloc(1, sizeof(*f));
+	char path[1024];
+
+	assert_non_null(f);
+	snprintf(f->root, sizeof(f->root), "/tmp/as9888-sysfs-XXXXXX");
+	assert_non_null(mkdtemp(f->root));
+	snprintf(f->dev, sizeof(f->dev), "%s/devices/i2c/1-000c/iio:device0",
+		 f->root);
+	fake_mkdir(f->dev, ".");
+	fake_mkdir(f->root, "devices/i2c/1-000c/as9888-eeprom0");
+	fake_mkdir(f->root, "bus/iio/devices");
+	snprintf(path, sizeof(path), "%s/bus/iio/devices/iio:device0", f->root);
+	assert_int_equal(symlink("../../../devices/i2c/1-000c/iio:device0", path), 0);
+	fake_put(f->dev, "name", "as9888\n");
+	fake_put(f->dev, "in_accel_x_calibbias", "0\n");
+	fake_put(f->dev, "in_accel_y_calibbias", "0\n");
+	fake_put(f->dev, "in_accel_z_calibbias", "0\n");
+	fake_reset_calibration(f);
+	snprintf(path, sizeof(path), "%s/devices/i2c/1-000c/as9888-eeprom0",
+		 f->root);
+	fake_put_bytes(path, "nvmem", fake_example_eeprom,
+		       sizeof(fake_example_eeprom));
+	setenv("AS9888_SYSFS", f->root, 1);
+	*state = f;
+
+	return 0;
+}
+
+int fake_sysfs_teardown(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char cmd[128];
+	int ret;
+
+	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", f->root);
+	ret = system(cmd);
+	free(f);
+
+	return ret;
+}

@@ -1,0 +1,49 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * A sysfs tree laid out like the AS9888 driver's, in a temporary directory
+ * for the tests that read and write the driver's attributes:
+ *
+ *   <root>/devices/i2c/1-000c/iio:device0/	the device's attributes
+ *   <root>/devices/i2c/1-000c/as9888-eeprom0/nvmem	the example EEPROM
+ *   <root>/bus/iio/devices/iio:device0 ->	the bus link
+ *
+ * $AS9888_SYSFS points at <root>. Failures end the calling cmocka test.
+ */
+#ifndef AS9888_FAKE_SYSFS_H
+#define AS9888_FAKE_SYSFS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "as9888_calib.h"
+
+/* The EEPROM of the built-in simulated unit: chip 676f64b435a720ba */
+extern const uint8_t fake_example_eeprom[AS9888_EEPROM_LEN];
+
+/**
+ * struct fake_sysfs - one tree
+ * @root:	its top, $AS9888_SYSFS
+ * @dev:	the IIO device's directory
+ */
+struct fake_sysfs {
+	char root[64];
+	char dev[256];
+};
+
+/* cmocka group set-up and tear-down: *@state is a struct fake_sysfs */
+int fake_sysfs_setup(void **state);
+int fake_sysfs_teardown(void **state);
+
+/* Write @text (or @len bytes of @data) as @dir/@name, replacing it */
+void fake_put(const char *dir, const char *name, const char *text);
+void fake_put_bytes(const char *dir, const char *name, const void *data,
+		    size_t len);
+/* @dir/@name's whole contents, NUL-terminated */
+void fake_get(const char *dir, const char *name, char *buf, size_t size);
+/* mkdir -p @dir/@sub */
+void fake_mkdir(const char *dir, const char *sub);
+
+/* The driver's calibration after probe: zero offsets at t_RT (23.750 degC) */
+void fake_reset_calibration(const struct fake_sysfs *f);
+
+#endif
