@@ -212,9 +212,49 @@ static bool option_allowed(enum cli_command cmd, int opt)
 	}
 }
 
+const char *cli_backend_name(enum cli_backend b)
+{
+	static const char *const names[] = {
+		[CLI_BACKEND_SIM] = "sim",
+		[CLI_BACKEND_RAW] = "raw",
+		[CLI_BACKEND_IIO] = "iio",
+		[CLI_BACKEND_NONE] = "none",
+	};
+
+	return (unsigned int)b < sizeof(names) / sizeof(names[0]) ? names[b] : "none";
+}
+
+/*
+ * No --backend: a simulator option names the simulator, a raw option the
+ * raw backend; the daemon serves the driver; the other chip commands look
+ * for the chip (cli_pick_backend()). The simulator is never a fallback.
+ */
+static void pick_backend(struct cli_opts *o)
+{
+	bool sim = o->unit_path || o->virtual_clock;
+	bool raw = o->raw.gpiochip || o->raw.rstn >= 0 || o->raw.int1 >= 0 ||
+		   o->raw.int2 >= 0 || strcmp(o->raw.i2c_dev, CLI_DEFAULT_I2C_DEV) ||
+		   o->raw.address != CLI_DEFAULT_I2C_ADDRESS;
+
+	o->backend_auto = true;
+	if (sim)	/* with a raw option too: refused below */
+		o->backend = CLI_BACKEND_SIM;
+	else if (raw)
+		o->backend = CLI_BACKEND_RAW;
+	else if (o->command == CLI_DAEMON)
+		o->backend = CLI_BACKEND_IIO;
+	else if (o->command == CLI_FACTORY_TEST || o->command == CLI_RESTORE ||
+		 o->command == CLI_RECALIBRATE || o->command == CLI_ROLLBACK ||
+		 o->command == CLI_CHECK)
+		cli_pick_backend(o);
+	else
+		o->backend = CLI_BACKEND_NONE;
+}
+
 int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	      size_t errlen)
 {
+	bool backend_given = false;
 	unsigned int i;
 	int64_t v;
 	int opt;
@@ -269,6 +309,7 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 			else
 				return bad(err, errlen, "unknown backend \"%s\" (sim, raw or iio)",
 					   optarg);
+			backend_given = true;
 			break;
 		case OPT_SOCKET:
 			if (!*optarg)
@@ -378,6 +419,8 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 		return bad(err, errlen, "request needs what to ask: status, check, recalibrate or rollback");
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
+	if (!backend_given)
+		pick_backend(o);
 	if (o->backend == CLI_BACKEND_RAW && (o->unit_path || o->virtual_clock))
 		return bad(err, errlen, "--unit and --sim-clock are for --backend sim");
 	if (o->backend == CLI_BACKEND_SIM &&

@@ -16,11 +16,22 @@
 #define CLI_DEFAULT_SOCKET_MODE	0660
 #define CLI_DEFAULT_I2C_ADDRESS	0x0c
 
+/*
+ * How the chip is reached. Without --backend, cli_parse() picks one
+ * (cli_pick_backend()): a simulator option (--unit, --sim-clock) names the
+ * simulator, a raw option the raw backend; else the bound driver, else a
+ * chip answering on the raw bus, else CLI_BACKEND_NONE (the commands that
+ * need the chip fail, saying @backend_why). The simulator never runs
+ * unless named.
+ */
 enum cli_backend {
 	CLI_BACKEND_SIM = 0,
 	CLI_BACKEND_RAW,
 	CLI_BACKEND_IIO,
+	CLI_BACKEND_NONE,
 };
+
+#define CLI_BACKEND_WHY_LEN	768
 
 enum cli_command {
 	CLI_HELP = 0,
@@ -51,6 +62,8 @@ enum cli_command {
  * @socket_mode:	its permissions: who may send requests
  * @socket_group:	its group (NULL: the daemon's)
  * @request:		what "request" asks the daemon
+ * @backend_auto:	@backend was picked, not given by --backend
+ * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
  * @ftest:		factory-test options
  */
 struct cli_opts {
@@ -69,12 +82,24 @@ struct cli_opts {
 	unsigned int socket_mode;
 	const char *socket_group;
 	const char *request;
+	bool backend_auto;
+	char backend_why[CLI_BACKEND_WHY_LEN];
 	struct ftest_opts ftest;
 };
 
 /* Returns 0, or -EINVAL with a message in @err */
 int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	      size_t errlen);
+
+/* "sim", "raw", "iio" or "none" */
+const char *cli_backend_name(enum cli_backend b);
+
+/*
+ * Without --backend: the bound AS9888 IIO driver, else a chip answering
+ * (WIA) at @o->raw's bus and address, else CLI_BACKEND_NONE with the
+ * reason and what to install in @o->backend_why. In backend_pick.c.
+ */
+void cli_pick_backend(struct cli_opts *o);
 
 /* Parse a decimal with up to @decimals fraction digits, scaled by 10^@decimals */
 int cli_parse_fixed(const char *s, int decimals, int64_t lo, int64_t hi,

@@ -63,10 +63,20 @@ int cmd_restore(const struct cli_opts *o)
 {
 	struct calib_record rec;
 
+	if (o->backend == CLI_BACKEND_NONE) {
+		fprintf(stderr, "as9888-calibd: restore: %s\n", o->backend_why);
+		return EXIT_FAILURE;
+	}
+	if (session_load_record(o->record_path, &rec))
+		return EXIT_FAILURE;
+	if (rec.simulated && o->backend != CLI_BACKEND_SIM) {
+		fprintf(stderr, "as9888-calibd: restore: %s was written by a factory test on the simulator (source = simulator), not on this chip: a simulated calibration is never applied to a real one (--backend %s). Run factory-test on this unit; nothing applied\n",
+			o->record_path, cli_backend_name(o->backend));
+		return EXIT_FAILURE;
+	}
 	if (o->backend == CLI_BACKEND_IIO)
 		return restore_iio(o);
-	if (session_load_record(o->record_path, &rec) ||
-	    session_apply_record(o, &rec))
+	if (session_apply_record(o, &rec))
 		return EXIT_FAILURE;
 	if (o->verbose)
 		printf("restored DAC 0x%02x 0x%02x 0x%02x on chip %016llx\n",

@@ -74,6 +74,8 @@ void ftest_opts_default(struct ftest_opts *o);
  * @level_mean_q16: its mean per axis
  * @level_t_mdegc: its temperature
  * @level_g:	its gravity direction
+ * @backend:	the backend the test ran on ("sim", "raw", "iio"), set by the
+ *		caller (NULL: not said)
  */
 struct ftest_result {
 	struct report report;
@@ -88,6 +90,7 @@ struct ftest_result {
 	int32_t level_mean_q16[AS9888_AXES];
 	int32_t level_t_mdegc;
 	int8_t level_g[AS9888_AXES];
+	const char *backend;
 };
 
 /*

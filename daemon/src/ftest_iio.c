@@ -309,7 +309,8 @@ static void judge_selftest_verdict(struct ftest_ctx *x, bool pass,
 	int axis;
 
 	snprintf(why, sizeof(why),
-		 "reading not available (%s): judged by the driver", unavailable);
+		 "reading not available (%.100s): judged by the driver",
+		 unavailable);
 	for (axis = 0; axis < AS9888_AXES; axis++)
 		ftest_skip_selftest_axis(x, axis, why);
 	ftest_judge(x, "2-23", "self-test verdict of the driver", pass,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 /* The factory test's report as text or JSON. */
 #include <stdio.h>
+#include <string.h>
 
 #include "ftest_print.h"
 #include "json.h"
@@ -21,6 +22,8 @@ void ftest_print_json(FILE *out, const struct ftest_result *res,
 
 	fputs("{\n  \"result\": ", out);
 	json_string(out, failed ? "fail" : "pass");
+	fputs(",\n  \"backend\": ", out);
+	json_string(out, res->backend);
 	fputs(",\n  \"failed_step\": ", out);
 	json_string(out, failed ? failed->step : NULL);
 	fputs(",\n  \"steps\": ", out);
@@ -56,6 +59,10 @@ void ftest_print_text(FILE *out, const struct ftest_result *res)
 	const struct judgment *failed = report_first_failure(&res->report);
 	const struct calib_record *rec = &res->rec;
 
+	if (res->backend)
+		fprintf(out, "Backend: %s%s\n\n", res->backend,
+			!strcmp(res->backend, "sim") ?
+			" (the SIMULATED chip, not a unit: its record is marked so)" : "");
 	report_print_text(out, &res->report);
 	if (res->have_calibration) {
 		fprintf(out, "\nCalibration\n");

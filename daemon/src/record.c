@@ -36,6 +36,7 @@ enum record_key {
 	KEY_GRAVITY,
 	KEY_SAMPLES,
 	KEY_LPF,
+	KEY_SOURCE,
 	KEY_CRC32,
 	KEY_COUNT,
 };
@@ -51,6 +52,7 @@ static const char *const key_names[KEY_COUNT] = {
 	[KEY_GRAVITY] = "gravity",
 	[KEY_SAMPLES] = "samples",
 	[KEY_LPF] = "lpf",
+	[KEY_SOURCE] = "source",
 	[KEY_CRC32] = "crc32",
 };
 
@@ -205,6 +207,12 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 	if (n < 0 || (size_t)n >= size)
 		return -ENOSPC;
 	len = (size_t)n;
+	if (rec->simulated) {
+		n = snprintf(buf + len, size - len, "source = simulator\n");
+		if (n < 0 || (size_t)n >= size - len)
+			return -ENOSPC;
+		len += (size_t)n;
+	}
 
 	n = snprintf(buf + len, size - len, "crc32 = %08x\n",
 		     record_crc32(buf, len));
@@ -355,6 +363,25 @@ static bool parse_created(struct cursor *c, int64_t *out)
 	return true;
 }
 
+/* One of two words: @yes sets *@v, @no clears it */
+static bool parse_choice(struct cursor *c, const char *yes, const char *no,
+			 bool *v)
+{
+	const char *tok;
+	size_t len;
+
+	if (!next_token(c, &tok, &len))
+		return false;
+	if (len == strlen(yes) && !memcmp(tok, yes, len))
+		*v = true;
+	else if (len == strlen(no) && !memcmp(tok, no, len))
+		*v = false;
+	else
+		return false;
+
+	return true;
+}
+
 static bool parse_value(enum record_key key, struct cursor *c,
 			struct calib_record *rec, uint64_t *chip)
 {
@@ -411,15 +438,9 @@ static bool parse_value(enum record_key key, struct cursor *c,
 		rec->samples = (uint32_t)v;
 		return true;
 	case KEY_LPF:
-		if (!next_token(c, &tok, &len))
-			return false;
-		if (len == 2 && !memcmp(tok, "on", 2))
-			rec->lpf = true;
-		else if (len == 3 && !memcmp(tok, "off", 3))
-			rec->lpf = false;
-		else
-			return false;
-		return true;
+		return parse_choice(c, "on", "off", &rec->lpf);
+	case KEY_SOURCE:
+		return parse_choice(c, "simulator", "chip", &rec->simulated);
 	default:
 		return false;
 	}
@@ -436,6 +457,7 @@ static const char *const value_help[KEY_COUNT] = {
 	[KEY_GRAVITY] = "3 integers -1, 0 or 1",
 	[KEY_SAMPLES] = "an integer 10..4096",
 	[KEY_LPF] = "on or off",
+	[KEY_SOURCE] = "simulator or chip",
 	[KEY_CRC32] = "8 hex digits",
 };
 
@@ -516,7 +538,7 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
 	}
 
 	for (k = 0; k < KEY_COUNT; k++)
-		if (!seen[k])
+		if (!seen[k] && k != KEY_SOURCE)	/* optional: older records */
 			return fail(err, errlen, "%s is missing%s", key_names[k],
 				    k == KEY_CRC32 ? " (truncated record?)" : "");
 	if (chip != record_fingerprint(rec->eeprom))

@@ -27,6 +27,8 @@
  * @samples:	N, samples averaged
  * @lpf:	the level test ran with the low-pass filter on
  * @created:	when the record was made, seconds since the epoch (UTC)
+ * @simulated:	made on the simulator, not on a chip ("source = simulator");
+ *		restore on a real backend refuses it
  */
 struct calib_record {
 	uint8_t eeprom[AS9888_EEPROM_LEN];
@@ -37,6 +39,7 @@ struct calib_record {
 	uint32_t samples;
 	bool lpf;
 	int64_t created;
+	bool simulated;
 };
 
 /* FNV-1a 64 of the EEPROM bytes: the chip identity shown to people */

@@ -27,6 +27,10 @@ int session_open_backend(const struct cli_opts *o, struct transport **t)
 	char err[SESSION_ERR_LEN];
 	int ret;
 
+	if (o->backend == CLI_BACKEND_NONE) {
+		fprintf(stderr, "as9888-calibd: %s\n", o->backend_why);
+		return -ENODEV;
+	}
 	if (o->backend == CLI_BACKEND_IIO) {
 		snprintf(err, sizeof(err),
 			 "--backend iio has no register access: use sim or raw");
@@ -190,6 +194,7 @@ int session_run_test(const struct cli_opts *o, const struct ftest_opts *f,
 
 	if (o->backend == CLI_BACKEND_IIO) {
 		ret = find_iio_device("test", dir, sizeof(dir));
+		res->backend = cli_backend_name(o->backend);
 		if (!ret)
 			ftest_run_iio(dir, f, res);
 		return ret;
@@ -198,8 +203,11 @@ int session_run_test(const struct cli_opts *o, const struct ftest_opts *f,
 	ret = session_open_backend(o, &t);
 	if (ret)
 		return ret;
+	res->backend = cli_backend_name(o->backend);
 	ftest_run(t, f, res);
 	transport_destroy(t);
+	/* a simulated chip's calibration is marked so: restore refuses it */
+	res->rec.simulated = o->backend == CLI_BACKEND_SIM;
 
 	return 0;
 }

@@ -52,6 +52,39 @@ check "JSON report has the documented fields" json \
 check "record written with mode 0644 in a 0755 directory" \
 	test "$(stat -c %a "$rec")" = 644 -a "$(stat -c %a "$(dirname "$rec")")" = 755
 cp "$rec" "$work/good"
+check "the report states the backend" json "d['backend'] == 'sim'"
+check "a record made on the simulator says so (source = simulator)" \
+	grep -qx "source = simulator" "$rec"
+
+# No --backend: the driver, else the raw bus, else a failure; never the simulator
+mkdir -p "$work/sys"
+AS9888_SYSFS=$work/sys run factory-test --record "$work/none/cal"
+check "factory-test without --backend, no driver, no bus: exit 1, says what to install, no record" \
+	eval '[ $rc -eq 1 ] && says "no AS9888 found" err && says "install the driver" err && \
+	      says "modprobe i2c-dev" err && says "backend sim" err && [ ! -e "$work/none/cal" ] && \
+	      ! says "pass" out'
+AS9888_SYSFS=$work/sys run restore --record "$rec"
+check "restore without --backend, no driver, no bus: exit 1, nothing done" \
+	eval '[ $rc -eq 1 ] && says "no AS9888 found" err'
+run restore --backend raw --i2c-dev "$work/no-such-i2c" --record "$rec"
+check "restore of a simulator record on a real backend: refused before the bus is opened" \
+	eval '[ $rc -eq 1 ] && says "written by a factory test on the simulator" err && \
+	      says "nothing applied" err && ! says "no-such-i2c" err'
+run restore --backend iio --record "$rec"
+check "restore of a simulator record through the driver: refused" \
+	eval '[ $rc -eq 1 ] && says "on the simulator" err'
+# a record from before the source key: still valid, taken as a chip's
+python3 - "$rec" "$work/old-format" <<'PY'
+import sys, zlib
+lines = [l for l in open(sys.argv[1]) if not l.startswith(("source =", "crc32 ="))]
+body = "".join(lines)
+open(sys.argv[2], "w").write(body + "crc32 = %08x\n" % zlib.crc32(body.encode()))
+PY
+run restore --backend raw --i2c-dev "$work/no-such-i2c" --record "$work/old-format"
+check "a record without source reads as a chip's: restore goes on to the bus" \
+	eval '[ $rc -eq 1 ] && says "no-such-i2c" err && ! says "simulator" err'
+run show --record "$work/old-format"
+check "a record without source: show reads it" test $rc -eq 0
 
 run show --record "$rec" --temperature 60 --json
 check "show --json: temperature and axes" json \

@@ -155,6 +155,42 @@ static void expect_refused(const char *key, const char *line, const char *why)
 		fail_msg("%s: \"%s\" does not say \"%s\"", key, err, why);
 }
 
+/* A record made on the simulator says so; older records read as a chip's */
+static void source_marked(void **state)
+{
+	struct calib_record rec, back;
+	char buf[RECORD_MAX_SIZE], err[256];
+	int len, i;
+
+	sample_record(&rec);
+	len = format(&rec, buf, sizeof(buf));
+	buf[len] = '\0';
+	assert_null(strstr(buf, "source"));
+	rec.simulated = true;
+	len = format(&rec, buf, sizeof(buf));
+	buf[len] = '\0';
+	assert_non_null(strstr(buf, "\nsource = simulator\ncrc32 = "));
+	assert_int_equal(record_parse(buf, (size_t)len, &back, err, sizeof(err)), 0);
+	assert_true(back.simulated);
+	assert_memory_equal(&rec, &back, sizeof(rec));
+	/* no byte of the mark can change unnoticed */
+	for (i = (int)(strstr(buf, "source") - buf); buf[i] != '\n'; i++) {
+		char copy[RECORD_MAX_SIZE];
+
+		memcpy(copy, buf, (size_t)len);
+		copy[i] ^= 0x20;
+		assert_int_not_equal(record_parse(copy, (size_t)len, &back, err,
+						  sizeof(err)), 0);
+	}
+
+	len = edit("lpf", "lpf = off\nsource = chip", buf);
+	assert_int_equal(record_parse(buf, (size_t)len, &back, err, sizeof(err)), 0);
+	assert_false(back.simulated);
+	expect_refused("lpf", "lpf = off\nsource = sim", "source must be simulator or chip");
+	expect_refused("lpf", "lpf = off\nsource = simulator\nsource = chip",
+		       "source given twice");
+}
+
 static void fields_validated(void **state)
 {
 	expect_refused("format", "format = as9888-calibration 2", "format must be");
@@ -275,6 +311,7 @@ int main(void)
 		cmocka_unit_test(round_trip),
 		cmocka_unit_test(every_corruption_refused),
 		cmocka_unit_test(every_truncation_refused),
+		cmocka_unit_test(source_marked),
 		cmocka_unit_test(fields_validated),
 		cmocka_unit_test(eeprom_validated),
 		cmocka_unit_test(atomic_write_and_read),
