@@ -34,6 +34,7 @@ enum {
 	OPT_SOCKET,
 	OPT_SOCKET_MODE,
 	OPT_SOCKET_GROUP,
+	OPT_LOCK_TIMEOUT,
 };
 
 static const struct option long_opts[] = {
@@ -61,6 +62,7 @@ static const struct option long_opts[] = {
 	{ "socket", required_argument, NULL, OPT_SOCKET },
 	{ "socket-mode", required_argument, NULL, OPT_SOCKET_MODE },
 	{ "socket-group", required_argument, NULL, OPT_SOCKET_GROUP },
+	{ "lock-timeout", required_argument, NULL, OPT_LOCK_TIMEOUT },
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -199,6 +201,9 @@ static bool option_allowed(enum cli_command cmd, int opt)
 		return level || cmd == CLI_SHOW || cmd == CLI_REQUEST;
 	case OPT_TEMPERATURE:
 		return cmd == CLI_SHOW;
+	case OPT_LOCK_TIMEOUT:
+		return cmd == CLI_FACTORY_TEST || cmd == CLI_RECALIBRATE ||
+		       cmd == CLI_ROLLBACK || cmd == CLI_DAEMON;
 	case OPT_VERBOSE:
 		return cmd == CLI_RESTORE;
 	case OPT_SAMPLES:
@@ -268,6 +273,7 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	o->raw.int2 = RAW_LINE_NONE;
 	o->socket_path = CLI_DEFAULT_SOCKET;
 	o->socket_mode = CLI_DEFAULT_SOCKET_MODE;
+	o->lock_timeout_s = CLI_DEFAULT_LOCK_TIMEOUT_S;
 	ftest_opts_default(&o->ftest);
 
 	if (argc < 2)
@@ -394,6 +400,12 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 				return bad(err, errlen, "--stable-timeout takes milliseconds 0..600000, not \"%s\"",
 					   optarg);
 			o->ftest.stable_timeout_ms = (uint32_t)v;
+			break;
+		case OPT_LOCK_TIMEOUT:
+			if (cli_parse_fixed(optarg, 0, 0, 3600, &v))
+				return bad(err, errlen, "--lock-timeout takes seconds 0..3600, not \"%s\"",
+					   optarg);
+			o->lock_timeout_s = (unsigned int)v;
 			break;
 		case OPT_KEEP_GOING:
 			o->ftest.keep_going = true;

@@ -15,6 +15,7 @@
 #define CLI_DEFAULT_SOCKET	"/run/as9888-calibd.sock"
 #define CLI_DEFAULT_SOCKET_MODE	0660
 #define CLI_DEFAULT_I2C_ADDRESS	0x0c
+#define CLI_DEFAULT_LOCK_TIMEOUT_S	30
 
 /*
  * How the chip is reached. Without --backend, cli_parse() picks one
@@ -62,6 +63,7 @@ enum cli_command {
  * @socket_mode:	its permissions: who may send requests
  * @socket_group:	its group (NULL: the daemon's)
  * @request:		what "request" asks the daemon
+ * @lock_timeout_s:	longest wait for the record's lock
  * @backend_auto:	@backend was picked, not given by --backend
  * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
  * @ftest:		factory-test options
@@ -82,6 +84,7 @@ struct cli_opts {
 	unsigned int socket_mode;
 	const char *socket_group;
 	const char *request;
+	unsigned int lock_timeout_s;
 	bool backend_auto;
 	char backend_why[CLI_BACKEND_WHY_LEN];
 	struct ftest_opts ftest;

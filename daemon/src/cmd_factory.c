@@ -20,7 +20,7 @@ int cmd_factory_test(const struct cli_opts *o)
 	bool stored = false;
 	int ret;
 
-	if (session_lock(o->record_path) < 0 ||
+	if (session_lock(o->record_path, o->lock_timeout_s) < 0 ||
 	    session_run_test(o, &o->ftest, &res))
 		return EXIT_FAILURE;
 

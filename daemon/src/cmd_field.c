@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "atomic_file.h"
 #include "commands.h"
@@ -38,7 +39,7 @@ int cmd_recalibrate(const struct cli_opts *o)
 	bool stored = false;
 	int ret;
 
-	if (session_lock(o->record_path) < 0)
+	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
 		return EXIT_FAILURE;
 	if (session_load_record(o->record_path, &old)) {
 		fprintf(stderr, "as9888-calibd: recalibrate needs the factory record; run factory-test first\n");
@@ -80,8 +81,14 @@ int cmd_rollback(const struct cli_opts *o)
 	snprintf(prev, sizeof(prev), "%s%s", o->record_path, SESSION_PREVIOUS_SUFFIX);
 	snprintf(swap, sizeof(swap), "%s%s.swap", o->record_path,
 		 SESSION_PREVIOUS_SUFFIX);
-	if (session_lock(o->record_path) < 0 ||
-	    session_load_record(o->record_path, &cur) ||
+	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
+		return EXIT_FAILURE;
+	if (access(prev, F_OK) && errno == ENOENT) {
+		fprintf(stderr, "as9888-calibd: rollback: there is no %s: nothing to roll back (only recalibrate keeps a previous record)\n",
+			prev);
+		return EXIT_FAILURE;
+	}
+	if (session_load_record(o->record_path, &cur) ||
 	    session_load_record(prev, &before))
 		return EXIT_FAILURE;
 	if (memcmp(cur.eeprom, before.eeprom, AS9888_EEPROM_LEN)) {

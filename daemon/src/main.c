@@ -41,6 +41,9 @@ static const char usage_text[] =
 "  --unit FILE          simulated unit description (default: built-in unit)\n"
 "  --sim-clock real|virtual  simulator time base (default real)\n"
 "  --json               JSON output (factory-test, show)\n"
+"  --lock-timeout S     longest wait for the record's lock held by another\n"
+"                       command (factory-test, recalibrate, rollback,\n"
+"                       daemon; default 30)\n"
 "\n"
 "raw backend options:\n"
 "  --i2c-dev PATH       i2c-dev node (default " CLI_DEFAULT_I2C_DEV ")\n"
@@ -74,7 +77,8 @@ static const char usage_text[] =
 "show options:\n"
 "  --temperature T      degrees Celsius, -30..85 (default: the level test's)\n"
 "\n"
-"Exit status: 0 success, 1 a judgment or check failed, 2 usage error.\n";
+"Exit status: 0 success, 1 a judgment or check failed, 2 usage error;\n"
+"request exits with the status of the command the daemon ran.\n";
 
 int main(int argc, char **argv)
 {

@@ -5,15 +5,23 @@
  * - a kernel uevent says an AS9888 IIO device appeared (boot, module
  *   reload, rebind): the record is applied to it;
  * - a client on the Unix socket asks for status, check, recalibrate or
- *   rollback: the request runs in a child process whose output goes to the
- *   client, one request at a time (requests are serialised);
- * - SIGTERM or SIGINT: it stops cleanly (a request in progress completes
- *   first, so a record being written is never cut short by us).
- * Who may ask is decided by the socket's file permissions.
+ *   rollback (request.h): the request runs in a child process whose output
+ *   goes to the client;
+ * - SIGTERM, SIGINT or SIGHUP: it stops (see stop()).
+ *
+ * No client can stall it or anyone else: a client's connection is read
+ * without blocking and has REQUEST_DEADLINE_MS from connecting to send its
+ * whole request line; status runs at once whatever else is running; the
+ * requests that use the chip or write the record (and the application on
+ * a device's appearance) run one at a time, in the order they came, each
+ * in its own child, while the loop goes on. At most CLIENTS_MAX clients
+ * are served at once; more are told "busy". SIGPIPE is ignored: a client
+ * that hangs up only loses its answer.
+ * Who may ask is decided by the socket's file permissions; the requester of
+ * every request that changes the record or the device is logged.
  */
 #include <errno.h>
-#include <fcntl.h>
-#include <grp.h>
+#include <limits.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -22,28 +30,62 @@
 #include <string.h>
 #include <sys/signalfd.h>
 #include <sys/socket.h>
-#include <sys/stat.h>
-#include <sys/un.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "commands.h"
 #include "iio.h"
+#include "request.h"
+#include "request_reply.h"
+#include "service_socket.h"
 #include "uevent.h"
 
-#define REQUEST_MAX		64
-#define LISTEN_BACKLOG		8
-#define SD_LISTEN_FDS_START	3
-/* A client has this long to send its request line */
-#define REQUEST_TIMEOUT_S	5
+/* Clients connected at once (reading, waiting or being served) */
+#define CLIENTS_MAX		16
+/* A client has this long from connecting to send its whole request line */
+#define REQUEST_DEADLINE_MS	5000
+/*
+ * After SIGTERM, running requests get this long to finish (a recalibration
+ * takes at most its stability timeout, the lock timeout and the
+ * measurement); then they are killed, which the record survives.
+ */
+#define STOP_GRACE_MS		60000
+#define EXIT_STATUS_USAGE	2
+
+enum client_state {
+	CLIENT_FREE = 0,
+	CLIENT_READING,		/* its request line is not complete */
+	CLIENT_WAITING,		/* for the chip, in arrival order */
+	CLIENT_RUNNING,		/* its child runs the request */
+};
+
+struct client {
+	enum client_state state;
+	int fd;
+	uint64_t deadline_ms;		/* of the request line */
+	uint64_t arrival;		/* order of the wait for the chip */
+	char line[REQUEST_LINE_MAX];
+	size_t len;
+	struct request req;
+	char peer[PEER_DESC_LEN];
+	pid_t pid;
+};
 
 struct service {
 	const struct cli_opts *o;
-	int listen_fd;
+	struct service_socket sock;
 	int uevent_fd;
 	int signal_fd;
-	bool socket_activated;
+	struct client clients[CLIENTS_MAX];
+	uint64_t arrivals;
+	bool chip_busy;			/* an exclusive child runs */
+	bool apply_wanted;		/* a device appeared: apply when the chip is free */
+	char apply_dev[IIO_PATH_MAX];
+	pid_t apply_pid;
+	uint64_t apply_start_us;
+	bool stopping;
+	uint64_t stop_deadline_ms;
 	unsigned long applied;
 	unsigned long apply_failures;
 };
@@ -62,213 +104,6 @@ static void log_msg(const char *fmt, ...)
 	fputc('\n', stderr);
 }
 
-/* A socket passed by systemd (LISTEN_PID/LISTEN_FDS), or -1 */
-static int activated_socket(void)
-{
-	const char *pid = getenv("LISTEN_PID"), *fds = getenv("LISTEN_FDS");
-
-	if (!pid || !fds || atol(pid) != (long)getpid() || atoi(fds) != 1)
-		return -1;
-	unsetenv("LISTEN_PID");
-	unsetenv("LISTEN_FDS");
-	unsetenv("LISTEN_FDNAMES");
-	fcntl(SD_LISTEN_FDS_START, F_SETFD, FD_CLOEXEC);
-
-	return SD_LISTEN_FDS_START;
-}
-
-static int open_socket(const struct cli_opts *o)
-{
-	struct sockaddr_un addr = { .sun_family = AF_UNIX };
-	mode_t old;
-	int fd, ret;
-
-	if (strlen(o->socket_path) >= sizeof(addr.sun_path)) {
-		log_msg("socket path %s is too long", o->socket_path);
-		return -ENAMETOOLONG;
-	}
-	strcpy(addr.sun_path, o->socket_path);
-
-	fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-	if (fd < 0)
-		return -errno;
-	/* a stale socket of an earlier run; anything else is left alone */
-	{
-		struct stat st;
-
-		if (!lstat(o->socket_path, &st) && S_ISSOCK(st.st_mode))
-			unlink(o->socket_path);
-	}
-	old = umask(0777 & ~o->socket_mode);
-	ret = bind(fd, (struct sockaddr *)&addr, sizeof(addr));
-	umask(old);
-	if (ret || listen(fd, LISTEN_BACKLOG)) {
-		ret = -errno;
-		log_msg("cannot listen on %s: %s", o->socket_path, strerror(errno));
-		close(fd);
-		return ret;
-	}
-	if (o->socket_group) {
-		struct group *gr = getgrnam(o->socket_group);
-
-		if (!gr || chown(o->socket_path, (uid_t)-1, gr->gr_gid)) {
-			log_msg("cannot give %s to group %s", o->socket_path,
-				o->socket_group);
-			close(fd);
-			unlink(o->socket_path);
-			return -EPERM;
-		}
-	}
-
-	return fd;
-}
-
-static int open_signals(void)
-{
-	sigset_t set;
-
-	sigemptyset(&set);
-	sigaddset(&set, SIGTERM);
-	sigaddset(&set, SIGINT);
-	sigaddset(&set, SIGHUP);
-	if (sigprocmask(SIG_BLOCK, &set, NULL))
-		return -errno;
-
-	return signalfd(-1, &set, SFD_CLOEXEC | SFD_NONBLOCK);
-}
-
-/* Run @fn in a child with stdout and stderr on @out; its exit status */
-static int run_child(int out, int (*fn)(const struct cli_opts *, const char *),
-		     const struct cli_opts *o, const char *arg)
-{
-	sigset_t set;
-	pid_t pid;
-	int status;
-
-	fflush(NULL);
-	pid = fork();
-	if (pid < 0)
-		return -errno;
-	if (pid == 0) {
-		sigemptyset(&set);
-		sigprocmask(SIG_SETMASK, &set, NULL);
-		if (out >= 0) {
-			dup2(out, STDOUT_FILENO);
-			dup2(out, STDERR_FILENO);
-		}
-		status = fn(o, arg);
-		fflush(NULL);
-		_exit(status);
-	}
-	while (waitpid(pid, &status, 0) < 0)
-		if (errno != EINTR)
-			return -errno;
-
-	return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-static int request_status(const struct cli_opts *o, const char *arg)
-{
-	struct cli_opts show = *o;
-
-	show.temperature_given = false;
-	return cmd_show(&show);
-}
-
-static int request_check(const struct cli_opts *o, const char *arg)
-{
-	return cmd_check(o);
-}
-
-static int request_recalibrate(const struct cli_opts *o, const char *arg)
-{
-	return cmd_recalibrate(o);
-}
-
-static int request_rollback(const struct cli_opts *o, const char *arg)
-{
-	return cmd_rollback(o);
-}
-
-static int apply_to_device(const struct cli_opts *o, const char *devpath)
-{
-	return iio_restore(o->record_path, devpath) ? EXIT_FAILURE : EXIT_SUCCESS;
-}
-
-static const struct {
-	const char *name;
-	int (*fn)(const struct cli_opts *o, const char *arg);
-} requests[] = {
-	{ "status", request_status },
-	{ "check", request_check },
-	{ "recalibrate", request_recalibrate },
-	{ "rollback", request_rollback },
-};
-
-/* Read one request line; only the known words, optionally " --json" */
-static int read_request(int fd, char *line, size_t size, bool *json)
-{
-	struct timeval tv = { .tv_sec = REQUEST_TIMEOUT_S };
-	size_t len = 0;
-	char *sp;
-
-	setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
-	while (len < size - 1) {
-		ssize_t n = read(fd, line + len, 1);
-
-		if (n <= 0)
-			return -EINVAL;
-		if (line[len] == '\n')
-			break;
-		len++;
-	}
-	line[len] = '\0';
-	*json = false;
-	sp = strchr(line, ' ');
-	if (sp) {
-		if (strcmp(sp, " --json"))
-			return -EINVAL;
-		*sp = '\0';
-		*json = true;
-	}
-
-	return 0;
-}
-
-static void serve_client(struct service *s)
-{
-	char line[REQUEST_MAX];
-	struct cli_opts o = *s->o;
-	unsigned int i;
-	bool json;
-	int fd, status;
-
-	fd = accept4(s->listen_fd, NULL, NULL, SOCK_CLOEXEC);
-	if (fd < 0)
-		return;
-	if (read_request(fd, line, sizeof(line), &json)) {
-		dprintf(fd, "error: expected one of status, check, recalibrate, rollback\n");
-		close(fd);
-		return;
-	}
-	for (i = 0; i < sizeof(requests) / sizeof(requests[0]); i++)
-		if (!strcmp(line, requests[i].name))
-			break;
-	if (i == sizeof(requests) / sizeof(requests[0])) {
-		dprintf(fd, "error: unknown request \"%s\"\n", line);
-		close(fd);
-		return;
-	}
-
-	o.json = json;
-	log_msg("%s requested", requests[i].name);
-	status = run_child(fd, requests[i].fn, &o, NULL);
-	if (!json)
-		dprintf(fd, "exit status %d\n", status);
-	close(fd);
-	log_msg("%s done: exit status %d", requests[i].name, status);
-}
-
 static uint64_t monotonic_us(void)
 {
 	struct timespec ts;
@@ -277,19 +112,314 @@ static uint64_t monotonic_us(void)
 	return (uint64_t)ts.tv_sec * 1000000 + (uint64_t)ts.tv_nsec / 1000;
 }
 
-static void apply(struct service *s, const char *devpath)
+static uint64_t monotonic_ms(void)
 {
-	uint64_t start = monotonic_us();
-	int status = run_child(-1, apply_to_device, s->o, devpath);
+	return monotonic_us() / 1000;
+}
 
-	if (status) {
+static int open_signals(void)
+{
+	sigset_t set;
+
+	/* a client that hangs up must never kill us: EPIPE instead */
+	signal(SIGPIPE, SIG_IGN);
+	sigemptyset(&set);
+	sigaddset(&set, SIGTERM);
+	sigaddset(&set, SIGINT);
+	sigaddset(&set, SIGHUP);
+	sigaddset(&set, SIGCHLD);
+	if (sigprocmask(SIG_BLOCK, &set, NULL))
+		return -errno;
+
+	return signalfd(-1, &set, SFD_CLOEXEC | SFD_NONBLOCK);
+}
+
+/*
+ * A child running @fn; -errno if none. It keeps only @keep (as fd 3, or
+ * nothing with -1) and the standard streams of the daemon: the other
+ * clients' connections close when the daemon closes them, not when this
+ * child ends.
+ */
+static pid_t spawn(int keep, int (*fn)(int fd, struct service *s, void *arg),
+		   struct service *s, void *arg)
+{
+	sigset_t set;
+	pid_t pid;
+
+	fflush(NULL);
+	pid = fork();
+	if (pid < 0)
+		return -errno;
+	if (pid)
+		return pid;
+
+	sigemptyset(&set);
+	sigprocmask(SIG_SETMASK, &set, NULL);
+	signal(SIGCHLD, SIG_DFL);
+	if (keep >= 0 && keep != 3 && dup2(keep, 3) < 0)
+		_exit(EXIT_FAILURE);
+	close_range(keep >= 0 ? 4 : 3, ~0U, 0);
+	_exit(fn(3, s, arg));
+}
+
+static int request_status(const struct cli_opts *o)
+{
+	struct cli_opts show = *o;
+
+	show.temperature_given = false;
+	return cmd_show(&show);
+}
+
+static int (*const request_fn[])(const struct cli_opts *o) = {
+	[REQUEST_STATUS] = request_status,
+	[REQUEST_CHECK] = cmd_check,
+	[REQUEST_RECALIBRATE] = cmd_recalibrate,
+	[REQUEST_ROLLBACK] = cmd_rollback,
+};
+
+static int run_request(int fd, struct service *s, void *arg)
+{
+	const struct client *c = arg;
+	struct cli_opts o = *s->o;
+
+	o.json = c->req.json;
+	return request_reply_run(fd, request_fn[c->req.kind], &o, c->req.json);
+}
+
+static int run_apply(int fd, struct service *s, void *arg)
+{
+	return iio_restore(s->o->record_path, s->apply_dev) ? EXIT_FAILURE :
+							       EXIT_SUCCESS;
+}
+
+static void client_close(struct client *c)
+{
+	close(c->fd);
+	memset(c, 0, sizeof(*c));
+	c->fd = -1;
+}
+
+/*
+ * Answer @c at once with @text and @status, and let it go. What it sent
+ * and we did not read is taken first (a little), so that the hang-up is
+ * not a reset that could cost it the answer.
+ */
+static void client_refuse(struct client *c, const char *text, int status)
+{
+	char drain[REQUEST_LINE_MAX];
+	int i;
+
+	request_reply_status_now(c->fd, text, status);
+	shutdown(c->fd, SHUT_WR);
+	for (i = 0; i < 4 && recv(c->fd, drain, sizeof(drain), MSG_DONTWAIT) > 0; i++)
+		;
+	client_close(c);
+}
+
+static void client_start(struct service *s, struct client *c)
+{
+	const char *name = request_name(c->req.kind);
+	pid_t pid;
+
+	log_msg("%s requested%s%s", name,
+		request_changes_state(c->req.kind) ? " by " : "",
+		request_changes_state(c->req.kind) ? c->peer : "");
+	pid = spawn(c->fd, run_request, s, c);
+	if (pid < 0) {
+		log_msg("%s not run: cannot fork: %s", name, strerror((int)-pid));
+		client_refuse(c, "as9888-calibd: the daemon cannot start the request\n",
+			      EXIT_FAILURE);
+		return;
+	}
+	c->state = CLIENT_RUNNING;
+	c->pid = pid;
+	if (request_exclusive(c->req.kind))
+		s->chip_busy = true;
+}
+
+/* The oldest client waiting for the chip, or NULL */
+static struct client *next_waiting(struct service *s)
+{
+	struct client *next = NULL;
+	unsigned int i;
+
+	for (i = 0; i < CLIENTS_MAX; i++) {
+		struct client *c = &s->clients[i];
+
+		if (c->state == CLIENT_WAITING && (!next || c->arrival < next->arrival))
+			next = c;
+	}
+
+	return next;
+}
+
+/* The chip to the next in line: a device's appearance first, then clients */
+static void run_next(struct service *s)
+{
+	struct client *c;
+	pid_t pid;
+
+	while (!s->chip_busy && !s->stopping) {
+		if (s->apply_wanted) {
+			s->apply_wanted = false;
+			s->apply_start_us = monotonic_us();
+			pid = spawn(-1, run_apply, s, NULL);
+			if (pid < 0) {
+				s->apply_failures++;
+				log_msg("calibration not applied to %s: cannot fork: %s",
+					s->apply_dev, strerror((int)-pid));
+				continue;
+			}
+			s->apply_pid = pid;
+			s->chip_busy = true;
+			return;
+		}
+		c = next_waiting(s);
+		if (!c)
+			return;
+		client_start(s, c);
+	}
+}
+
+/* @c's request line is complete: run it, queue it, or refuse it */
+static void client_dispatch(struct service *s, struct client *c)
+{
+	char err[160], text[200];
+
+	if (request_parse(c->line, c->len, &c->req, err, sizeof(err))) {
+		snprintf(text, sizeof(text), "error: %s\n", err);
+		client_refuse(c, text, EXIT_STATUS_USAGE);
+		return;
+	}
+	if (!request_exclusive(c->req.kind)) {
+		client_start(s, c);
+		return;
+	}
+	c->state = CLIENT_WAITING;
+	c->arrival = s->arrivals++;
+	if (s->chip_busy)
+		log_msg("%s waits for the request before it", request_name(c->req.kind));
+	run_next(s);
+}
+
+/* Take what @c has sent so far, never blocking */
+static void client_read(struct service *s, struct client *c)
+{
+	char *nl;
+	ssize_t n;
+
+	n = recv(c->fd, c->line + c->len, sizeof(c->line) - c->len, MSG_DONTWAIT);
+	if (n < 0 && (errno == EAGAIN || errno == EINTR))
+		return;
+	if (n <= 0) {
+		client_refuse(c, "error: the request line ended without a newline\n",
+			      EXIT_STATUS_USAGE);
+		return;
+	}
+	c->len += (size_t)n;
+	nl = memchr(c->line, '\n', c->len);
+	if (nl) {
+		c->len = (size_t)(nl - c->line);
+		client_dispatch(s, c);
+	} else if (c->len == sizeof(c->line)) {
+		client_refuse(c, "error: request line too long\n", EXIT_STATUS_USAGE);
+	}
+}
+
+static void accept_clients(struct service *s)
+{
+	unsigned int i;
+	int fd;
+
+	while ((fd = accept4(s->sock.fd, NULL, NULL, SOCK_CLOEXEC)) >= 0) {
+		struct client *c = NULL;
+
+		for (i = 0; i < CLIENTS_MAX && !c; i++)
+			if (s->clients[i].state == CLIENT_FREE)
+				c = &s->clients[i];
+		if (!c) {
+			struct client busy = { .fd = fd };
+
+			client_refuse(&busy, "error: busy: too many requests at once; try again later\n",
+				      EXIT_FAILURE);
+			log_msg("a client refused: %d connections already", CLIENTS_MAX);
+			continue;
+		}
+		memset(c, 0, sizeof(*c));
+		c->fd = fd;
+		c->state = CLIENT_READING;
+		c->deadline_ms = monotonic_ms() + REQUEST_DEADLINE_MS;
+		peer_describe(fd, c->peer);
+	}
+}
+
+/* Clients past their request line's deadline are let go */
+static void expire_clients(struct service *s)
+{
+	uint64_t now = monotonic_ms();
+	unsigned int i;
+
+	for (i = 0; i < CLIENTS_MAX; i++) {
+		struct client *c = &s->clients[i];
+
+		if (c->state != CLIENT_READING || now < c->deadline_ms)
+			continue;
+		log_msg("client %s dropped: no request line within %d ms", c->peer,
+			REQUEST_DEADLINE_MS);
+		client_refuse(c, "error: no request line in time\n", EXIT_STATUS_USAGE);
+	}
+}
+
+static int exit_status(int wstatus)
+{
+	return WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+}
+
+static void apply_done(struct service *s, int wstatus)
+{
+	s->apply_pid = 0;
+	s->chip_busy = false;
+	if (exit_status(wstatus)) {
 		s->apply_failures++;
-		log_msg("calibration not applied to %s", devpath);
+		log_msg("calibration not applied to %s", s->apply_dev);
 	} else {
 		s->applied++;
-		log_msg("calibration applied to %s in %llu us", devpath,
-			(unsigned long long)(monotonic_us() - start));
+		log_msg("calibration applied to %s in %llu us", s->apply_dev,
+			(unsigned long long)(monotonic_us() - s->apply_start_us));
 	}
+}
+
+static void client_done(struct service *s, struct client *c, int wstatus)
+{
+	int status = exit_status(wstatus);
+
+	/* a child that exits has sent its status line itself */
+	if (!WIFEXITED(wstatus))
+		request_reply_status_now(c->fd, "as9888-calibd: the request was killed\n",
+					 status);
+	log_msg("%s done: exit status %d", request_name(c->req.kind), status);
+	if (request_exclusive(c->req.kind))
+		s->chip_busy = false;
+	client_close(c);
+}
+
+static void reap_children(struct service *s)
+{
+	unsigned int i;
+	int wstatus;
+	pid_t pid;
+
+	while ((pid = waitpid(-1, &wstatus, WNOHANG)) > 0) {
+		if (pid == s->apply_pid) {
+			apply_done(s, wstatus);
+			continue;
+		}
+		for (i = 0; i < CLIENTS_MAX; i++)
+			if (s->clients[i].state == CLIENT_RUNNING &&
+			    s->clients[i].pid == pid)
+				client_done(s, &s->clients[i], wstatus);
+	}
+	run_next(s);
 }
 
 static void handle_uevents(struct service *s)
@@ -299,41 +429,164 @@ static void handle_uevents(struct service *s)
 	char iio[IIO_PATH_MAX];
 	ssize_t n;
 
-	while ((n = recv(s->uevent_fd, buf, sizeof(buf), 0)) > 0) {
+	while ((n = recv(s->uevent_fd, buf, sizeof(buf), MSG_DONTWAIT)) > 0) {
 		if (uevent_parse(buf, (size_t)n, &ev) || !uevent_is_appearance(&ev))
 			continue;
 		if (iio_find_device(ev.devpath, iio, sizeof(iio)))
 			continue;
-		apply(s, iio);
+		snprintf(s->apply_dev, sizeof(s->apply_dev), "%s", iio);
+		s->apply_wanted = true;
 	}
+	run_next(s);
+}
+
+static bool children_running(const struct service *s)
+{
+	unsigned int i;
+
+	for (i = 0; i < CLIENTS_MAX; i++)
+		if (s->clients[i].state == CLIENT_RUNNING)
+			return true;
+
+	return s->apply_pid > 0;
+}
+
+/*
+ * A stop signal: no new clients; those not yet running are told; running
+ * requests get STOP_GRACE_MS to finish (a record being written is not cut
+ * short by us), then are killed.
+ */
+static void stop(struct service *s, unsigned int signo)
+{
+	unsigned int i;
+
+	log_msg("signal %u: stopping", signo);
+	s->stopping = true;
+	s->stop_deadline_ms = monotonic_ms() + STOP_GRACE_MS;
+	s->apply_wanted = false;
+	for (i = 0; i < CLIENTS_MAX; i++) {
+		struct client *c = &s->clients[i];
+
+		if (c->state == CLIENT_READING || c->state == CLIENT_WAITING)
+			client_refuse(c, "error: the daemon is stopping\n", EXIT_FAILURE);
+	}
+}
+
+static void kill_children(struct service *s)
+{
+	unsigned int i;
+
+	log_msg("requests still running after %d ms: killing them", STOP_GRACE_MS);
+	for (i = 0; i < CLIENTS_MAX; i++)
+		if (s->clients[i].state == CLIENT_RUNNING)
+			kill(s->clients[i].pid, SIGKILL);
+	if (s->apply_pid > 0)
+		kill(s->apply_pid, SIGKILL);
+}
+
+static void handle_signals(struct service *s)
+{
+	struct signalfd_siginfo si;
+
+	/* SIGCHLD only wakes us: every child that ended is reaped below */
+	while (read(s->signal_fd, &si, sizeof(si)) == sizeof(si))
+		if (si.ssi_signo != SIGCHLD && !s->stopping)
+			stop(s, si.ssi_signo);
+	reap_children(s);
+}
+
+/* Milliseconds until the nearest deadline, or -1 for none */
+static int poll_timeout(const struct service *s)
+{
+	uint64_t now = monotonic_ms(), next = UINT64_MAX;
+	unsigned int i;
+
+	if (s->stopping)
+		next = s->stop_deadline_ms;
+	for (i = 0; i < CLIENTS_MAX; i++)
+		if (s->clients[i].state == CLIENT_READING &&
+		    s->clients[i].deadline_ms < next)
+			next = s->clients[i].deadline_ms;
+	if (next == UINT64_MAX)
+		return -1;
+	if (next <= now)
+		return 0;
+
+	return next - now > INT_MAX ? INT_MAX : (int)(next - now);
+}
+
+/* One round of the loop: 1 to go on, 0 when stopped, -1 on failure */
+static int serve_once(struct service *s)
+{
+	struct pollfd fds[3 + CLIENTS_MAX];
+	struct client *polled[CLIENTS_MAX];
+	nfds_t n = 0, first_client;
+	unsigned int i;
+
+	fds[n++] = (struct pollfd){ .fd = s->signal_fd, .events = POLLIN };
+	fds[n++] = (struct pollfd){ .fd = s->stopping ? -1 : s->sock.fd, .events = POLLIN };
+	fds[n++] = (struct pollfd){ .fd = s->stopping ? -1 : s->uevent_fd, .events = POLLIN };
+	first_client = n;
+	for (i = 0; i < CLIENTS_MAX; i++)
+		if (s->clients[i].state == CLIENT_READING) {
+			polled[n - first_client] = &s->clients[i];
+			fds[n++] = (struct pollfd){ .fd = s->clients[i].fd, .events = POLLIN };
+		}
+
+	if (poll(fds, n, poll_timeout(s)) < 0) {
+		if (errno == EINTR)
+			return 1;
+		log_msg("poll: %s", strerror(errno));
+		return -1;
+	}
+	if (fds[0].revents & POLLIN)
+		handle_signals(s);
+	if (fds[2].revents & POLLIN)
+		handle_uevents(s);
+	for (i = first_client; i < n; i++)
+		if (fds[i].revents && polled[i - first_client]->state == CLIENT_READING)
+			client_read(s, polled[i - first_client]);
+	if (fds[1].revents & POLLIN)
+		accept_clients(s);
+	expire_clients(s);
+
+	if (!s->stopping)
+		return 1;
+	if (children_running(s) && monotonic_ms() >= s->stop_deadline_ms) {
+		kill_children(s);
+		s->stop_deadline_ms = UINT64_MAX - 1;
+	}
+	return children_running(s) ? 1 : 0;
 }
 
 /* At start: every AS9888 IIO device already there gets its calibration */
 static void apply_present(struct service *s)
 {
-	char iio[IIO_PATH_MAX];
-
-	if (!iio_find_device(NULL, iio, sizeof(iio)))
-		apply(s, iio);
+	if (!iio_find_device(NULL, s->apply_dev, sizeof(s->apply_dev))) {
+		s->apply_wanted = true;
+		run_next(s);
+	}
 }
 
 int cmd_daemon(const struct cli_opts *o)
 {
-	struct service s = { .o = o, .listen_fd = -1, .uevent_fd = -1 };
-	struct pollfd fds[3];
-	int ret = EXIT_SUCCESS;
+	struct service s = { .o = o, .uevent_fd = -1 };
+	char err[512];
+	unsigned int i;
+	int ret;
 
+	for (i = 0; i < CLIENTS_MAX; i++)
+		s.clients[i].fd = -1;
 	s.signal_fd = open_signals();
 	if (s.signal_fd < 0) {
 		log_msg("cannot set up signals: %s", strerror(errno));
 		return EXIT_FAILURE;
 	}
-	s.listen_fd = activated_socket();
-	s.socket_activated = s.listen_fd >= 0;
-	if (!s.socket_activated)
-		s.listen_fd = open_socket(o);
-	if (s.listen_fd < 0)
+	if (service_socket_open(o, &s.sock, err, sizeof(err))) {
+		log_msg("%s", err);
+		close(s.signal_fd);
 		return EXIT_FAILURE;
+	}
 	s.uevent_fd = uevent_open();
 	if (s.uevent_fd < 0)
 		log_msg("no kernel uevents (%s): devices that appear later are not seen",
@@ -341,39 +594,16 @@ int cmd_daemon(const struct cli_opts *o)
 
 	log_msg("ready: record %s, socket %s", o->record_path, o->socket_path);
 	apply_present(&s);
+	while ((ret = serve_once(&s)) > 0)
+		;
+	/* only a failed poll() leaves with children: they are not waited for */
 
-	for (;;) {
-		struct signalfd_siginfo si;
-
-		fds[0] = (struct pollfd){ .fd = s.signal_fd, .events = POLLIN };
-		fds[1] = (struct pollfd){ .fd = s.listen_fd, .events = POLLIN };
-		fds[2] = (struct pollfd){ .fd = s.uevent_fd, .events = POLLIN };
-		if (poll(fds, s.uevent_fd >= 0 ? 3 : 2, -1) < 0) {
-			if (errno == EINTR)
-				continue;
-			log_msg("poll: %s", strerror(errno));
-			ret = EXIT_FAILURE;
-			break;
-		}
-		if (fds[0].revents & POLLIN &&
-		    read(s.signal_fd, &si, sizeof(si)) == sizeof(si)) {
-			log_msg("signal %u: stopping", si.ssi_signo);
-			break;
-		}
-		if (fds[2].revents & POLLIN)
-			handle_uevents(&s);
-		if (fds[1].revents & POLLIN)
-			serve_client(&s);
-	}
-
-	if (!s.socket_activated)
-		unlink(o->socket_path);
-	close(s.listen_fd);
+	service_socket_close(o, &s.sock);
 	if (s.uevent_fd >= 0)
 		close(s.uevent_fd);
 	close(s.signal_fd);
 	log_msg("stopped: calibration applied %lu times, %lu failures", s.applied,
 		s.apply_failures);
 
-	return ret;
+	return ret ? EXIT_FAILURE : EXIT_SUCCESS;
 }

@@ -5,7 +5,6 @@
  */
 #include <errno.h>
 #include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 #include <stdio.h>
 #include <string.h>
@@ -16,6 +15,7 @@
 #include "backend_sim.h"
 #include "ftest.h"
 #include "iio.h"
+#include "lock_file.h"
 #include "session.h"
 
 int session_open_backend(const struct cli_opts *o, struct transport **t)
@@ -107,26 +107,39 @@ int session_save_record(const char *path, struct calib_record *rec,
 /*
  * Commands that change the record take <path>.lock exclusively, so two of
  * them (a factory run and a recalibration, two recalibrations) never
- * interleave their writes; the second waits for the first.
+ * interleave their writes; the second waits for the first, up to
+ * @timeout_s, saying that it waits.
  */
-int session_lock(const char *path)
+int session_lock(const char *path, unsigned int timeout_s)
 {
 	char lock[PATH_MAX], err[SESSION_ERR_LEN];
 	int fd, ret;
 
 	ret = ensure_parent_dir(path, STATE_DIR_MODE, err, sizeof(err));
-	if (ret) {
-		fprintf(stderr, "as9888-calibd: %s\n", err);
-		return ret;
+	if (!ret && snprintf(lock, sizeof(lock), "%s%s", path, SESSION_LOCK_SUFFIX) >=
+		    (int)sizeof(lock)) {
+		snprintf(err, sizeof(err), "record path %s is too long", path);
+		ret = -ENAMETOOLONG;
 	}
-	snprintf(lock, sizeof(lock), "%s.lock", path);
-	fd = open(lock, O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, RECORD_MODE);
-	if (fd < 0 || flock(fd, LOCK_EX)) {
-		ret = -errno;
+	fd = ret ? ret : lock_file_open(lock, RECORD_MODE, err, sizeof(err));
+	if (fd < 0) {
+		fprintf(stderr, "as9888-calibd: %s\n", err);
+		return fd;
+	}
+	ret = lock_file_try(fd);
+	if (ret == -EWOULDBLOCK) {
+		fprintf(stderr, "as9888-calibd: %s is held by another command; waiting up to %u s\n",
+			lock, timeout_s);
+		ret = lock_file_wait(fd, timeout_s * 1000);
+	}
+	if (ret == -ETIMEDOUT)
+		fprintf(stderr, "as9888-calibd: %s is still held after %u s: another as9888-calibd command is running, or some process holds it (fuser -v %s shows which); nothing done\n",
+			lock, timeout_s, lock);
+	else if (ret)
 		fprintf(stderr, "as9888-calibd: cannot lock %s: %s\n", lock,
-			strerror(errno));
-		if (fd >= 0)
-			close(fd);
+			strerror(-ret));
+	if (ret) {
+		close(fd);
 		return ret;
 	}
 

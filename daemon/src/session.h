@@ -16,6 +16,7 @@
 #define STATE_DIR_MODE		0755
 #define SESSION_ERR_LEN		512
 #define SESSION_PREVIOUS_SUFFIX	".previous"
+#define SESSION_LOCK_SUFFIX	".lock"
 
 /* Both print the reason to stderr and return -errno on failure */
 int session_open_backend(const struct cli_opts *o, struct transport **t);
@@ -45,7 +46,10 @@ bool session_store_result(const struct cli_opts *o, struct ftest_result *res,
 int session_activate_record(const struct cli_opts *o,
 			    const struct calib_record *rec);
 
-/* Returns the lock's fd (held until exit), or -errno */
-int session_lock(const char *path);
+/*
+ * Lock @path's record for writing, waiting at most @timeout_s for another
+ * holder. The lock's fd (held until exit), or -errno (said on stderr).
+ */
+int session_lock(const char *path, unsigned int timeout_s);
 
 #endif

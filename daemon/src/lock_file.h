@@ -1,0 +1,21 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/* The lock file of a record: opened without being fooled, waited for with a deadline. */
+#ifndef AS9888_LOCK_FILE_H
+#define AS9888_LOCK_FILE_H
+
+#include <stddef.h>
+
+/*
+ * Open (creating it with @mode) the lock file @path: never through a
+ * symbolic link, never blocking on a FIFO or device put there, and only a
+ * regular file. The fd, or -errno with the reason in @err.
+ */
+int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen);
+
+/* flock(LOCK_EX) of @fd now: 0, -EWOULDBLOCK when someone holds it, or -errno */
+int lock_file_try(int fd);
+
+/* flock(LOCK_EX) of @fd within @timeout_ms: 0, -ETIMEDOUT, or -errno */
+int lock_file_wait(int fd, unsigned int timeout_ms);
+
+#endif

@@ -1,0 +1,54 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * The daemon's request protocol. A client sends one line: a request word,
+ * optionally followed by " --json". The daemon answers with the command's
+ * output and a last line "exit status N" (N: the command's exit status).
+ * With --json the output is the JSON document when N is 0 and the error
+ * text otherwise, never both.
+ */
+#ifndef AS9888_REQUEST_H
+#define AS9888_REQUEST_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* Longest request line, newline included */
+#define REQUEST_LINE_MAX	64
+#define REQUEST_STATUS_PREFIX	"exit status "
+
+enum request_kind {
+	REQUEST_STATUS = 0,
+	REQUEST_CHECK,
+	REQUEST_RECALIBRATE,
+	REQUEST_ROLLBACK,
+};
+
+struct request {
+	enum request_kind kind;
+	bool json;
+};
+
+const char *request_name(enum request_kind kind);
+
+/* Changes the record or the device: its requester is logged */
+bool request_changes_state(enum request_kind kind);
+
+/* Uses the chip or writes the record: one such request at a time */
+bool request_exclusive(enum request_kind kind);
+
+/*
+ * Parse the request line @line of @len bytes (without its newline; any
+ * byte may appear). 0, or -EINVAL with the reason in @err, the words
+ * quoted with anything unprintable shown as '?'.
+ */
+int request_parse(const char *line, size_t len, struct request *r, char *err,
+		  size_t errlen);
+
+/*
+ * The exit status in the last line of a reply of @len bytes: 0..255, or
+ * -1 when the reply does not end with a status line. @body_len gets the
+ * length of what precedes that line.
+ */
+int request_reply_status(const char *reply, size_t len, size_t *body_len);
+
+#endif

@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: GPL-2.0
+/* The daemon's listening socket, and who is on the other end of a client's. */
+#include <errno.h>
+#include <fcntl.h>
+#include <grp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include "service_socket.h"
+
+#define LISTEN_BACKLOG		16
+#define SD_LISTEN_FDS_START	3
+
+/* A socket passed by systemd (LISTEN_PID/LISTEN_FDS), or -1 */
+static int activated_socket(void)
+{
+	const char *pid = getenv("LISTEN_PID"), *fds = getenv("LISTEN_FDS");
+
+	if (!pid || !fds || atol(pid) != (long)getpid() || atoi(fds) != 1)
+		return -1;
+	unsetenv("LISTEN_PID");
+	unsetenv("LISTEN_FDS");
+	unsetenv("LISTEN_FDNAMES");
+	fcntl(SD_LISTEN_FDS_START, F_SETFD, FD_CLOEXEC);
+
+	return SD_LISTEN_FDS_START;
+}
+
+/*
+ * Is a process listening on the socket file at @addr? Connecting tells:
+ * ECONNREFUSED means a stale file. Anything else but a refusal counts as
+ * alive, so that an unclear answer never makes us take a live socket.
+ */
+static bool socket_alive(const struct sockaddr_un *addr, char *pid, size_t len)
+{
+	struct ucred cred;
+	socklen_t cl = sizeof(cred);
+	bool alive;
+	int fd;
+
+	fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+	if (fd < 0)
+		return true;
+	alive = !connect(fd, (const struct sockaddr *)addr, sizeof(*addr)) ||
+		errno != ECONNREFUSED;
+	snprintf(pid, len, "unknown");
+	if (alive && !getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &cl) && cred.pid)
+		snprintf(pid, len, "%ld", (long)cred.pid);
+	close(fd);
+
+	return alive;
+}
+
+static int fail(char *err, size_t errlen, int errnum, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
+
+/* Say why in @err; -@errnum */
+static int fail(char *err, size_t errlen, int errnum, const char *fmt, ...)
+{
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(err, errlen, fmt, ap);
+	va_end(ap);
+
+	return -errnum;
+}
+
+/* Bind @fd to @addr; a stale socket file there is replaced, a live one is not */
+static int bind_socket(int fd, const struct sockaddr_un *addr, mode_t mode,
+		       char *err, size_t errlen)
+{
+	char pid[24];
+	struct stat st;
+	mode_t old;
+	int ret;
+
+	old = umask(0777 & ~mode);
+	ret = bind(fd, (const struct sockaddr *)addr, sizeof(*addr));
+	if (ret && errno == EADDRINUSE && !lstat(addr->sun_path, &st) &&
+	    S_ISSOCK(st.st_mode)) {
+		if (socket_alive(addr, pid, sizeof(pid))) {
+			umask(old);
+			return fail(err, errlen, EADDRINUSE,
+				    "another as9888-calibd (pid %s) is serving %s: stop it first, or give this one another --socket",
+				    pid, addr->sun_path);
+		}
+		unlink(addr->sun_path);
+		ret = bind(fd, (const struct sockaddr *)addr, sizeof(*addr));
+	}
+	umask(old);
+	if (ret)
+		return fail(err, errlen, errno, "cannot listen on %s: %s",
+			    addr->sun_path, strerror(errno));
+
+	return 0;
+}
+
+int service_socket_open(const struct cli_opts *o, struct service_socket *s,
+			char *err, size_t errlen)
+{
+	struct sockaddr_un addr = { .sun_family = AF_UNIX };
+	struct stat st;
+	int fd, ret;
+
+	memset(s, 0, sizeof(*s));
+	s->fd = activated_socket();
+	s->activated = s->fd >= 0;
+	if (s->activated)	/* the loop never waits in accept() */
+		return fcntl(s->fd, F_SETFL, fcntl(s->fd, F_GETFL) | O_NONBLOCK) ?
+		       fail(err, errlen, errno, "socket from systemd: %s",
+			    strerror(errno)) : 0;
+
+	if (strlen(o->socket_path) >= sizeof(addr.sun_path))
+		return fail(err, errlen, ENAMETOOLONG, "socket path %s is too long",
+			    o->socket_path);
+	strcpy(addr.sun_path, o->socket_path);
+	fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+	if (fd < 0)
+		return fail(err, errlen, errno, "cannot create a socket: %s",
+			    strerror(errno));
+	ret = bind_socket(fd, &addr, o->socket_mode, err, errlen);
+	if (ret) {
+		close(fd);
+		return ret;
+	}
+	if (lstat(o->socket_path, &st) || listen(fd, LISTEN_BACKLOG)) {
+		ret = errno;
+		unlink(o->socket_path);
+		close(fd);
+		return fail(err, errlen, ret, "cannot listen on %s: %s",
+			    o->socket_path, strerror(ret));
+	}
+	s->dev = st.st_dev;
+	s->ino = st.st_ino;
+	s->fd = fd;
+	if (o->socket_group) {
+		struct group *gr = getgrnam(o->socket_group);
+
+		if (!gr || chown(o->socket_path, (uid_t)-1, gr->gr_gid)) {
+			service_socket_close(o, s);
+			return fail(err, errlen, EPERM,
+				    "cannot give %s to group %s", o->socket_path,
+				    o->socket_group);
+		}
+	}
+
+	return 0;
+}
+
+void service_socket_close(const struct cli_opts *o, struct service_socket *s)
+{
+	struct stat st;
+
+	if (s->fd < 0)
+		return;
+	if (!s->activated && !lstat(o->socket_path, &st) && st.st_dev == s->dev &&
+	    st.st_ino == s->ino)
+		unlink(o->socket_path);
+	close(s->fd);
+	s->fd = -1;
+}
+
+void peer_describe(int fd, char desc[PEER_DESC_LEN])
+{
+	struct ucred cred;
+	socklen_t len = sizeof(cred);
+
+	if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len))
+		snprintf(desc, PEER_DESC_LEN, "unknown peer");
+	else
+		snprintf(desc, PEER_DESC_LEN, "uid %u gid %u pid %ld",
+			 (unsigned int)cred.uid, (unsigned int)cred.gid,
+			 (long)cred.pid);
+}

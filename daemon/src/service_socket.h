@@ -1,0 +1,36 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/* The daemon's listening socket, and who is on the other end of a client's. */
+#ifndef AS9888_SERVICE_SOCKET_H
+#define AS9888_SERVICE_SOCKET_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <sys/types.h>
+
+#include "cli.h"
+
+struct service_socket {
+	int fd;
+	bool activated;		/* passed by systemd: not ours to remove */
+	dev_t dev;		/* the socket file we created */
+	ino_t ino;
+};
+
+/*
+ * The socket passed by systemd, or a new one at @o->socket_path with
+ * @o's mode and group. A socket file another process still listens on is
+ * never replaced: the call fails, saying so; a stale one (nobody
+ * listening) is. 0, or -errno with the reason in @err.
+ */
+int service_socket_open(const struct cli_opts *o, struct service_socket *s,
+			char *err, size_t errlen);
+
+/* Close it, and remove the socket file if it is still the one we created */
+void service_socket_close(const struct cli_opts *o, struct service_socket *s);
+
+#define PEER_DESC_LEN	64
+
+/* "uid U gid G pid P" of the process that connected @fd, or "unknown peer" */
+void peer_describe(int fd, char desc[PEER_DESC_LEN]);
+
+#endif

@@ -1,0 +1,184 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# as9888-calibd daemon against hostile clients and a second instance: a
+# client that hangs up before its answer (F1 of issue 15), silent and
+# trickling clients, a record lock held by someone else, SIGTERM while
+# clients stall (F3), a second daemon on the same socket (F4), request's
+# exit status and --json on failure (F5), the requester of state changes in
+# the log. Every wait is bounded by a generous timeout, so a stall fails a
+# test instead of hanging it; no test depends on a tight time budget.
+# Output is TAP.
+set -u
+
+calibd=${1:?usage: daemon_hostile.sh PATH-TO-as9888-calibd}
+calibd=$(realpath "$calibd")
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d /tmp/as9888-hostile-XXXXXX)
+export ASAN_OPTIONS=detect_leaks=1
+# no AS9888 device here: the daemon serves requests only
+mkdir -p "$work/sys"
+export AS9888_SYSFS=$work/sys
+pids=()
+cleanup() {
+	local p
+	for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done
+	rm -rf "$work"
+}
+trap cleanup EXIT
+# shellcheck source=../lib/tap.sh
+. "$here/../lib/tap.sh"
+TAP_SHOW="$work/log"
+# clients WHAT ARGS...: hostile_clients.py on the socket (in the background
+# too: exec, so that killing $! kills the clients)
+clients() { exec python3 "$here/hostile_clients.py" "$sock" "$@"; }
+
+rec=$work/state/calibration
+sock=$work/sock
+"$calibd" factory-test --sim-clock virtual --record "$rec" >/dev/null ||
+	{ echo "Bail out! no factory record"; exit 1; }
+
+# start_daemon LOG [OPTIONS]: $pid, once its socket answers
+start_daemon() {
+	local log=$1
+	shift
+	"$calibd" daemon --sim-clock virtual --record "$rec" --socket "$sock" "$@" 2>"$log" &
+	pid=$!
+	pids+=("$pid")
+	for _ in $(seq 200); do
+		timeout 10 "$calibd" request status --socket "$sock" >/dev/null 2>&1 && return 0
+		sleep 0.05
+	done
+	echo "Bail out! the daemon did not come up"
+	exit 1
+}
+alive() { kill -0 "$pid" 2>/dev/null; }
+status_ok() { timeout "${1:-30}" "$calibd" request status --socket "$sock" >"$work/status" 2>&1; }
+# stopped [SECONDS]: the daemon exits (SIGTERM sent) within SECONDS, status 0
+stopped() {
+	local t
+	kill -TERM "$pid"
+	for t in $(seq $((${1:-30} * 10))); do
+		alive || { wait "$pid"; return; }
+		sleep 0.1
+	done
+	kill -KILL "$pid"
+	return 1
+}
+
+start_daemon "$work/log"
+
+# F1: hang up before the answer, many times, during status and recalibrate
+(clients hangup 20 status)
+(clients hangup 3 recalibrate)
+sleep 1
+check "clients hanging up before their answer: the daemon lives on" alive
+for _ in $(seq 600); do
+	[ "$(grep -c 'recalibrate done' "$work/log")" -ge 3 ] && break
+	sleep 0.1
+done
+check "and serves the next client" status_ok
+check "the recalibrations whose clients left completed, record intact" \
+	eval '[ "$(grep -c "recalibrate done: exit status 0" "$work/log")" -eq 3 ] &&
+	      "$calibd" show --record "$rec" >/dev/null'
+check "the requester of each state change is logged (SO_PEERCRED)" \
+	eval '[ "$(grep -c "recalibrate requested by uid $(id -u) gid $(id -g) pid [0-9]" "$work/log")" -eq 3 ]'
+
+# F5: request's exit status; --json prints JSON only on success
+mv "$rec.previous" "$work/previous"
+run request rollback --socket "$sock"
+check "request rollback without a previous record: exit 1, says why" \
+	eval '[ $rc -eq 1 ] && says "nothing to roll back" out && says "request rollback failed" err'
+run request rollback --json --socket "$sock"
+check "the same with --json: exit 1, error on stderr, nothing on stdout" \
+	eval '[ $rc -eq 1 ] && [ ! -s "$work/out" ] && says "nothing to roll back" err'
+mv "$work/previous" "$rec.previous"
+run request check --json --socket "$sock"
+check "request check --json: exit 0, stdout is JSON alone" \
+	eval '[ $rc -eq 0 ] && python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$work/out"'
+run request reboot --socket "$sock"
+check "an unknown request: exit 2, named" eval '[ $rc -eq 2 ] && says "unknown request \"reboot\"" out'
+out=$(clients raw $'recalibrate --force\n')
+check "words after the request are refused, exit status 2" \
+	eval 'grep -q "^error: unexpected \"--force\"" <<<"$out" && grep -q "^exit status 2$" <<<"$out"'
+
+# F3: silent clients delay nobody
+(clients silent 10 60) >"$work/silent" &
+silent=$!
+pids+=("$silent")
+for _ in $(seq 300); do grep -q ready "$work/silent" && break; sleep 0.1; done
+check "10 silent clients connected: status is still answered" status_ok 40
+check "each silent client is dropped at its request deadline" \
+	eval 'for _ in $(seq 300); do [ "$(grep -c "dropped: no request line" "$work/log")" -ge 10 ] && break; sleep 0.1; done;
+	      [ "$(grep -c "dropped: no request line" "$work/log")" -ge 10 ]'
+kill "$silent" 2>/dev/null
+wait "$silent" 2>/dev/null
+
+(clients silent 16 60) >"$work/silent" &
+silent=$!
+pids+=("$silent")
+for _ in $(seq 300); do grep -q ready "$work/silent" && break; sleep 0.1; done
+# connected is not yet accepted: ask until all 16 are, each answer at once
+for _ in $(seq 100); do
+	run request status --socket "$sock"
+	says "error: busy" out && break
+	sleep 0.1
+done
+check "a client beyond the 16 connected at once is told busy at once" \
+	eval '[ $rc -eq 1 ] && says "error: busy" out'
+kill "$silent" 2>/dev/null
+wait "$silent" 2>/dev/null
+for _ in $(seq 100); do status_ok && break; sleep 0.1; done
+
+# a client trickling one byte every 2 s: a per-read timeout would hold it for
+# minutes; the whole-request deadline (5 s) lets it go
+held=$(clients trickle 2 90)
+check "a trickling client is let go within 60 s (took ${held} s)" \
+	eval '[ "$held" != held ] && [ "${held%.*}" -lt 60 ] &&
+	      [ "$(grep -c "dropped: no request line" "$work/log")" -ge 11 ]'
+
+# a lock held by another process: the request says so and gives up after
+# --lock-timeout; status is answered meanwhile
+stopped || true
+start_daemon "$work/log2" --lock-timeout 3
+TAP_SHOW="$work/log2"
+exec python3 "$here/hostile_clients.py" "$rec.lock" lock 120 >"$work/holder" &
+holder=$!
+pids+=("$holder")
+for _ in $(seq 300); do grep -q held "$work/holder" && break; sleep 0.1; done
+timeout 100 "$calibd" request recalibrate --socket "$sock" >"$work/recal" 2>&1 &
+recal=$!
+for _ in $(seq 300); do grep -q "recalibrate requested" "$work/log2" && break; sleep 0.1; done
+check "status answered while a recalibration waits for the lock" status_ok 30
+wait "$recal"; rc=$?
+check "the recalibration gives up after --lock-timeout, naming the lock and who to ask" \
+	eval '[ $rc -eq 1 ] && grep -q "calibration.lock is still held after 3 s" "$work/recal" &&
+	      grep -q "fuser -v" "$work/recal"'
+kill "$holder"
+wait "$holder" 2>/dev/null
+check "with the lock free, the recalibration runs" \
+	eval 'timeout 100 "$calibd" request recalibrate --socket "$sock" >/dev/null'
+
+# F4: a second daemon on the same socket refuses; the first keeps it
+run daemon --sim-clock virtual --record "$rec" --socket "$sock"
+check "a second daemon on a live socket refuses to start, naming the first" \
+	eval '[ $rc -eq 1 ] && says "another as9888-calibd (pid $pid) is serving $sock" err'
+check "the first still owns the socket" status_ok
+
+# SIGTERM while a client trickles: the daemon stops at once
+(clients trickle 2 60) >/dev/null &
+trickler=$!
+pids+=("$trickler")
+sleep 1
+check "SIGTERM with a stalling client: stopped within 30 s, exit 0" stopped 30
+check "and removed its socket" test ! -e "$sock"
+kill "$trickler" 2>/dev/null
+wait "$trickler" 2>/dev/null
+
+# a stale socket (nobody listening) is replaced
+python3 -c "import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])" "$sock"
+start_daemon "$work/log3"
+check "a stale socket file is replaced" status_ok
+stopped || true
+
+tap_end
