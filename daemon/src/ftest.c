@@ -9,6 +9,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "as9888_regs.h"
 #include "ftest_internal.h"
@@ -17,6 +18,17 @@
 #define FTEST_STABLE_RETRY_MS	200
 
 const char *const ftest_axis_name = "XYZ";
+
+/* Where each judgment of a level run finds its step (pass1_steps[]) */
+enum level_step {
+	LEVEL_ST1 = 0,
+	LEVEL_TMPS = 1,
+	LEVEL_EMPT = 2,
+	LEVEL_ST2 = 3,
+	LEVEL_MAX = 4,		/* max X Y Z, then min X Y Z */
+	LEVEL_FLUCT = 10,	/* X Y Z */
+	LEVEL_SAMPLES = 13,	/* every sample X low, X high, Y..., Z... */
+};
 
 bool ftest_judge(struct ftest_ctx *x, const char *step, const char *name,
 		 bool ok, const char *limits, const char *fmt, ...)
@@ -39,6 +51,12 @@ void ftest_skip(struct ftest_ctx *x, const char *step, const char *name,
 		const char *why)
 {
 	report_add(&x->res->report, step, name, JUDGMENT_SKIP, NULL, "%s", why);
+}
+
+void ftest_value(struct ftest_ctx *x, double v, double lo, double hi,
+		 const char *unit)
+{
+	report_set_value(&x->res->report, v, lo, hi, unit);
 }
 
 int ftest_io_failed(struct ftest_ctx *x, const char *step, const char *what,
@@ -82,7 +100,7 @@ int ftest_check_eeprom(struct ftest_ctx *x,
 		    "fingerprint %016llx",
 		    (unsigned long long)record_fingerprint(raw));
 	if (x->o->expect_eeprom &&
-	    !ftest_judge(x, "1-27", "chip matches the calibration record",
+	    !ftest_judge(x, "1-27.match", "chip matches the calibration record",
 			 !memcmp(raw, x->o->expect_eeprom, AS9888_EEPROM_LEN),
 			 "EEPROM equals the record's",
 			 "chip %016llx, record %016llx",
@@ -94,7 +112,7 @@ int ftest_check_eeprom(struct ftest_ctx *x,
 	}
 
 	for (bits = res->ee.warnings; bits; bits &= bits - 1)
-		report_add(&res->report, "1-27", "EEPROM warning", JUDGMENT_PASS,
+		report_add(&res->report, "1-27.warning", "EEPROM warning", JUDGMENT_PASS,
 			   NULL, "warning: %s",
 			   as9888_ee_warning_str(bits & -bits));
 
@@ -116,10 +134,13 @@ bool ftest_judge_selftest_axis(struct ftest_ctx *x, int axis, bool ok,
 	char name[SELFTEST_NAME_LEN];
 
 	selftest_axis_name(axis, name);
+	ftest_judge(x, selftest_steps[axis], name, ok,
+		    axis == 2 ? "300..1000" : "-100..100", "%.2f%s",
+		    adj_q8 / 256.0, note);
+	ftest_value(x, adj_q8 / 256.0, axis == 2 ? 300 : -100,
+		    axis == 2 ? 1000 : 100, "LSB");
 
-	return ftest_judge(x, selftest_steps[axis], name, ok,
-			   axis == 2 ? "300..1000" : "-100..100", "%.2f%s",
-			   adj_q8 / 256.0, note);
+	return ok;
 }
 
 void ftest_skip_selftest_axis(struct ftest_ctx *x, int axis, const char *why)
@@ -141,6 +162,8 @@ void level_run_init(struct level_run *r)
 	}
 	r->tmps_min = UINT8_MAX;
 	r->bad_st1 = r->bad_tmps = r->bad_empt = r->bad_st2 = -1;
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		r->bad_acc[axis][0] = r->bad_acc[axis][1] = -1;
 }
 
 void level_run_add(struct level_run *r, const struct chip_sample *s)
@@ -154,6 +177,12 @@ void level_run_add(struct level_run *r, const struct chip_sample *s)
 			r->min[axis] = s->acc[axis];
 		if (s->acc[axis] > r->max[axis])
 			r->max[axis] = s->acc[axis];
+		if (as9888_acc_saturated(s->acc[axis])) {
+			int end = s->acc[axis] > 0;
+
+			if (!r->saturated[axis][end]++)
+				r->bad_acc[axis][end] = i;
+		}
 	}
 	r->tmps_sum += s->tmps;
 	if (s->tmps < r->tmps_min)
@@ -208,60 +237,69 @@ static int level_collect_stable(struct ftest_ctx *x, uint32_t n,
 	return 0;
 }
 
-static void level_judge_values(struct ftest_ctx *x, const struct level_run *r,
-			       const char *const steps[]);
-
-/* The per-sample and min/max/fluctuation judgments of one level run */
-static void level_judge(struct ftest_ctx *x, const struct level_run *r,
-			const char *const steps[])
+/* The ID @step.@what, for a second judgment of one step */
+static const char *sub_id(char buf[JUDGMENT_ID_LEN], const char *step,
+			  const char *what)
 {
-	/* steps: ST1, TMPS, EMPT, ST2, max X Y Z, min X Y Z, fluct X Y Z */
+	snprintf(buf, JUDGMENT_ID_LEN, "%s.%s", step, what);
+	return buf;
+}
 
+/*
+ * A status register on every sample: @bad the first offending sample (-1:
+ * none), @bad_val its value, @want the value the step requires
+ */
+static bool judge_every_sample(struct ftest_ctx *x, const struct level_run *r,
+			       const char *step, const char *name, int bad,
+			       uint8_t bad_val, uint8_t want)
+{
+	char limits[8];
+
+	snprintf(limits, sizeof(limits), "0x%02x", want);
 	if (r->status_by_driver)
-		ftest_judge(x, steps[0], "ST1 data ready (every sample)", true,
-			    "0x01", "checked by the driver on all %u samples",
-			    r->n);
-	else
-		ftest_judge(x, steps[0], "ST1 data ready (every sample)",
-			    r->bad_st1 < 0, "0x01",
-			    r->bad_st1 < 0 ? "all 0x01" : "sample %d: 0x%02x",
-			    r->bad_st1, r->bad_st1_val);
-	if (x->stop)
-		return;
-	ftest_judge(x, steps[1], "TMPS within specification",
-		    r->bad_tmps < 0, "0x28..0xe0",
-		    r->bad_tmps < 0 ? "0x%02x..0x%02x" : "sample %d: 0x%02x",
-		    r->bad_tmps < 0 ? r->tmps_min : r->bad_tmps,
-		    r->bad_tmps < 0 ? r->tmps_max : r->bad_tmps_val);
-	if (x->stop)
-		return;
-	ftest_judge(x, steps[1], "temperature stable during averaging (Note 4b)",
-		    r->tmps_max - r->tmps_min <= FTEST_TMPS_SPREAD_MAX,
-		    "TMPS spread <= 1 code (0.625 degC)", "TMPS 0x%02x..0x%02x",
-		    r->tmps_min, r->tmps_max);
-	if (x->stop)
-		return;
-	if (r->status_by_driver) {
-		ftest_judge(x, steps[2], "EMPT (every sample)", true, "0x00",
+		ftest_judge(x, step, name, true, limits,
 			    "checked by the driver on all %u samples", r->n);
-		ftest_skip(x, steps[3], "ST2 normal end, magnetometer off (HST)",
-			   "ST2 is not visible through the driver");
-		level_judge_values(x, r, steps);
-		return;
-	}
-	ftest_judge(x, steps[2], "EMPT (every sample)", r->bad_empt < 0, "0x00",
-		    r->bad_empt < 0 ? "all 0x00" : "sample %d: 0x%02x",
-		    r->bad_empt, r->bad_empt_val);
-	if (x->stop)
-		return;
-	ftest_judge(x, steps[3], "ST2 normal end, magnetometer off (HST)",
-		    r->bad_st2 < 0, "0x02",
-		    r->bad_st2 < 0 ? "all 0x02" : "sample %d: 0x%02x",
-		    r->bad_st2, r->bad_st2_val);
-	if (x->stop)
-		return;
+	else
+		ftest_judge(x, step, name, bad < 0, limits,
+			    bad < 0 ? "all 0x%02x" : "sample %d: 0x%02x",
+			    bad < 0 ? want : bad, bad_val);
+	ftest_value(x, bad < 0 ? want : bad_val, want, want, "code");
 
-	level_judge_values(x, r, steps);
+	return !x->stop;
+}
+
+/*
+ * 3-7..3-12 (3-32..3-37): every sample of each axis within
+ * -2048 < A < 2047. The application note reads A1xL and A1xH in two rows
+ * under one two-sided limit; the lower half is judged under the L row's
+ * step (3-7, 3-9, 3-11), the upper half under the H row's (3-8, 3-10,
+ * 3-12).
+ */
+static bool judge_samples_in_range(struct ftest_ctx *x,
+				   const struct level_run *r,
+				   const char *const steps[])
+{
+	int axis, end;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		for (end = 0; end < 2; end++) {
+			uint32_t bad = r->saturated[axis][end];
+			char name[48];
+
+			snprintf(name, sizeof(name), "%c %s on every sample",
+				 ftest_axis_name[axis], end ? "below 2047" : "above -2048");
+			ftest_judge(x, steps[LEVEL_SAMPLES + 2 * axis + end], name,
+				    !bad, end ? "A < 2047" : "A > -2048",
+				    !bad ? "all %u samples" : "%u samples at %d, the first sample %d",
+				    !bad ? r->n : bad, end ? 2047 : -2048,
+				    r->bad_acc[axis][end]);
+			ftest_value(x, bad, 0, 0, "samples");
+			if (x->stop)
+				return false;
+		}
+	}
+
+	return true;
 }
 
 /* 3-14..3-22: saturation and fluctuation */
@@ -269,7 +307,6 @@ static void level_judge_values(struct ftest_ctx *x, const struct level_run *r,
 			       const char *const steps[])
 {
 	int axis, i;
-
 
 	/* 3-14..3-19: the maxima, then the minima, must not saturate */
 	for (i = 0; i < 2 * AS9888_AXES; i++) {
@@ -279,8 +316,11 @@ static void level_judge_values(struct ftest_ctx *x, const struct level_run *r,
 		axis = i % AS9888_AXES;
 		snprintf(name, sizeof(name), "%s of %c",
 			 i < AS9888_AXES ? "maximum" : "minimum", ftest_axis_name[axis]);
-		if (!ftest_judge(x, steps[4 + i], name, !as9888_acc_saturated(v[axis]),
-				 "-2048 < A < 2047", "%d", v[axis]) && x->stop)
+		ftest_judge(x, steps[LEVEL_MAX + i], name,
+			    !as9888_acc_saturated(v[axis]), "-2048 < A < 2047",
+			    "%d", v[axis]);
+		ftest_value(x, v[axis], -2047, 2046, "LSB");
+		if (x->stop)
 			return;
 	}
 	for (axis = 0; axis < AS9888_AXES; axis++) {
@@ -291,25 +331,75 @@ static void level_judge_values(struct ftest_ctx *x, const struct level_run *r,
 		snprintf(name, sizeof(name), "fluctuation of %c", ftest_axis_name[axis]);
 		snprintf(limits, sizeof(limits), "max - min <= %u",
 			 x->o->fluctuation);
-		if (!ftest_judge(x, steps[10 + axis], name, ok, limits, "%d%s",
-				 r->max[axis] - r->min[axis],
-				 !ok && x->o->user_mode ?
-				 ": the device moved; keep it still and flat, then try again" :
-				 "") && x->stop)
+		ftest_judge(x, steps[LEVEL_FLUCT + axis], name, ok, limits, "%d%s",
+			    r->max[axis] - r->min[axis],
+			    !ok && x->o->user_mode ?
+			    ": the device moved; keep it still and flat, then try again" :
+			    "");
+		ftest_value(x, r->max[axis] - r->min[axis], 0, x->o->fluctuation,
+			    "LSB");
+		if (x->stop)
 			return;
 	}
 }
 
+/* The per-sample and min/max/fluctuation judgments of one level run */
+static void level_judge(struct ftest_ctx *x, const struct level_run *r,
+			const char *const steps[])
+{
+	char id[JUDGMENT_ID_LEN];
+	int spread = r->tmps_max - r->tmps_min;
+
+	if (!judge_every_sample(x, r, steps[LEVEL_ST1], "ST1 data ready (every sample)",
+				r->bad_st1, r->bad_st1_val, AS9888_ST1_DRDY_MSK))
+		return;
+	ftest_judge(x, steps[LEVEL_TMPS], "TMPS within specification",
+		    r->bad_tmps < 0, "0x28..0xe0",
+		    r->bad_tmps < 0 ? "0x%02x..0x%02x" : "sample %d: 0x%02x",
+		    r->bad_tmps < 0 ? r->tmps_min : r->bad_tmps,
+		    r->bad_tmps < 0 ? r->tmps_max : r->bad_tmps_val);
+	/* the sample farthest from the middle of the range, or the bad one */
+	ftest_value(x, r->bad_tmps >= 0 ? r->bad_tmps_val :
+		    0x84 - r->tmps_min > r->tmps_max - 0x84 ? r->tmps_min :
+		    r->tmps_max, 0x28, 0xe0, "code");
+	if (x->stop)
+		return;
+	ftest_judge(x, sub_id(id, steps[LEVEL_TMPS], "stable"),
+		    "temperature stable during averaging (Note 4b)",
+		    spread <= FTEST_TMPS_SPREAD_MAX,
+		    "TMPS spread <= 1 code (0.625 degC)", "TMPS 0x%02x..0x%02x",
+		    r->tmps_min, r->tmps_max);
+	ftest_value(x, spread, 0, FTEST_TMPS_SPREAD_MAX, "code");
+	if (x->stop)
+		return;
+	if (!judge_every_sample(x, r, steps[LEVEL_EMPT], "EMPT (every sample)",
+				r->bad_empt, r->bad_empt_val, 0) ||
+	    !judge_samples_in_range(x, r, steps))
+		return;
+	if (r->status_by_driver)
+		ftest_skip(x, steps[LEVEL_ST2], "ST2 normal end, magnetometer off (HST)",
+			   "ST2 is not visible through the driver");
+	else if (!judge_every_sample(x, r, steps[LEVEL_ST2],
+				     "ST2 normal end, magnetometer off (HST)",
+				     r->bad_st2, r->bad_st2_val, AS9888_ST2_HST_MSK))
+		return;
+
+	level_judge_values(x, r, steps);
+}
+
+/* The steps of one level run, indexed by enum level_step */
 static const char *const pass1_steps[] = {
 	"3-4", "3-5", "3-6", "3-13",
 	"3-14", "3-15", "3-16", "3-17", "3-18", "3-19",
 	"3-20", "3-21", "3-22",
+	"3-7", "3-8", "3-9", "3-10", "3-11", "3-12",
 };
 
 static const char *const pass2_steps[] = {
 	"3-29", "3-30", "3-31", "3-38",
 	"3-39", "3-40", "3-41", "3-42", "3-43", "3-44",
 	"3-45", "3-46", "3-47",
+	"3-32", "3-33", "3-34", "3-35", "3-36", "3-37",
 };
 
 /*
@@ -343,7 +433,7 @@ static int choose_samples(struct ftest_ctx *x, uint32_t *n)
 	*n = as9888_samples_needed(1, (uint32_t)lround(worst * AS9888_Q16_ONE),
 				   x->o->permissible_error_q16);
 	snprintf(limits, sizeof(limits), "N <= %d", AS9888_SAMPLES_MAX);
-	if (!ftest_judge(x, "3-7", "averaging count from Note 2", *n <= AS9888_SAMPLES_MAX,
+	if (!ftest_judge(x, "3-3.N", "averaging count from Note 2", *n <= AS9888_SAMPLES_MAX,
 			 limits, "sigma %.3f LSB, Sigma %.3f LSB: N %u%s", worst,
 			 (double)x->o->permissible_error_q16 / AS9888_Q16_ONE, *n,
 			 *n > AS9888_SAMPLES_MAX ? " (environment too noisy)" : ""))
@@ -382,11 +472,13 @@ static int user_flat(struct ftest_ctx *x, const int32_t mean_q16[AS9888_AXES],
 			h2 += a * a;
 	}
 	tilt = atan2(sqrt(h2), v) * 180.0 / M_PI;
-	if (!ftest_judge(x, "3-23", "device flat", tilt <= FTEST_USER_TILT_DEG,
-			 "tilt <= 10 degrees",
-			 tilt <= FTEST_USER_TILT_DEG ? "tilt about %.1f degrees" :
-			 "the device is not flat (tilted about %.1f degrees): lay it flat on a level surface and try again",
-			 tilt))
+	ftest_judge(x, "3-23.flat", "device flat", tilt <= FTEST_USER_TILT_DEG,
+		    "tilt <= 10 degrees",
+		    tilt <= FTEST_USER_TILT_DEG ? "tilt about %.1f degrees" :
+		    "the device is not flat (tilted about %.1f degrees): lay it flat on a level surface and try again",
+		    tilt);
+	ftest_value(x, tilt, 0, FTEST_USER_TILT_DEG, "degree");
+	if (tilt > FTEST_USER_TILT_DEG)
 		return -EINVAL;
 
 	return 0;
@@ -411,7 +503,7 @@ static int posture(struct ftest_ctx *x, const int32_t mean_q16[AS9888_AXES],
 		as9888_posture_detect(mean_q16, g);
 
 	err = as9888_posture_check(mean_q16, st_q16, g);
-	ftest_judge(x, "3-23", "level posture (D8)", err == AS9888_POSTURE_OK,
+	ftest_judge(x, "3-23.posture", "level posture (D8)", err == AS9888_POSTURE_OK,
 		    "horizontal |A| <= St/2, vertical |A| >= St/2",
 		    "%s; A = %.2f %.2f %.2f, G = %d %d %d%s", why[err],
 		    mean_q16[0] / 65536.0, mean_q16[1] / 65536.0,
@@ -466,7 +558,7 @@ static int dac_optimum(struct ftest_ctx *x, const int32_t mean_q16[AS9888_AXES],
 			clamped = true;
 	}
 
-	ftest_judge(x, "3-23", "optimal DAC (6.6)", !clamped,
+	ftest_judge(x, "3-23.dacopt", "optimal DAC (6.6)", !clamped,
 		    "linear code within -67..67",
 		    "Ot_L %.2f %.2f %.2f LSB -> DAC 0x%02x 0x%02x 0x%02x%s",
 		    ot_l[0] / 65536.0, ot_l[1] / 65536.0, ot_l[2] / 65536.0,
@@ -494,6 +586,7 @@ static int level_pass(struct ftest_ctx *x, uint32_t n, const char *step,
 		      const char *const steps[], int32_t mean[AS9888_AXES],
 		      int32_t *t_l, int32_t st[AS9888_AXES])
 {
+	char id[JUDGMENT_ID_LEN];
 	struct level_run run;
 	int ret;
 
@@ -509,7 +602,8 @@ static int level_pass(struct ftest_ctx *x, uint32_t n, const char *step,
 	if (!ret)
 		ret = sensitivities(&x->res->ee, *t_l, st);
 	if (ret)
-		ftest_judge(x, steps[1], "level temperature", false, "-30..85 degC",
+		ftest_judge(x, sub_id(id, steps[LEVEL_TMPS], "temperature"),
+			    "level temperature", false, "-30..85 degC",
 			    "cannot use the level temperature");
 
 	return ret;
@@ -587,6 +681,9 @@ int ftest_engine_run(struct ftest_ctx *x)
 {
 	uint64_t start = x->ops->now_ns(x);
 	int ret;
+
+	x->res->opts = *x->o;
+	x->res->started = (int64_t)time(NULL);
 
 	ret = x->ops->step1(x);
 	if (!ret && !x->stop && !x->o->level_only)

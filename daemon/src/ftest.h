@@ -76,6 +76,8 @@ void ftest_opts_default(struct ftest_opts *o);
  * @level_g:	its gravity direction
  * @backend:	the backend the test ran on ("sim", "raw", "iio"), set by the
  *		caller (NULL: not said)
+ * @opts:	the options the test ran with
+ * @started:	when it started, seconds since the epoch (UTC)
  */
 struct ftest_result {
 	struct report report;
@@ -91,6 +93,8 @@ struct ftest_result {
 	int32_t level_t_mdegc;
 	int8_t level_g[AS9888_AXES];
 	const char *backend;
+	struct ftest_opts opts;
+	int64_t started;
 };
 
 /*

@@ -233,7 +233,7 @@ static int iio_step1(struct ftest_ctx *x)
 	bool same;
 	int axis, ret;
 
-	ftest_skip(x, "1-2", "RSTN pin check (D11)",
+	ftest_skip(x, "1-2.rstn", "RSTN pin check (D11)",
 		   "the driver owns RSTN (--backend raw with the driver unbound checks it)");
 	ftest_judge(x, "1-4", "device ID (WIA)", true, "0x48",
 		    "checked by the driver when it bound to %s", d->dir);
@@ -241,8 +241,8 @@ static int iio_step1(struct ftest_ctx *x)
 	/* the test takes the buffer: never from another program */
 	ret = iio_read_attr(d->dir, "buffer/enable", val, sizeof(val));
 	if (ret < 0)
-		return ftest_io_failed(x, "1-4", "buffer/enable", ret);
-	if (!ftest_judge(x, "1-4", "device free for the test", !strcmp(val, "0"),
+		return ftest_io_failed(x, "1-4.free", "buffer/enable", ret);
+	if (!ftest_judge(x, "1-4.free", "device free for the test", !strcmp(val, "0"),
 			 "buffer not enabled", "%s%s", d->dir,
 			 strcmp(val, "0") ?
 			 ": another program is capturing from it; stop that first" : "")) {
@@ -296,7 +296,7 @@ static void judge_selftest_readings(struct ftest_ctx *x,
 			    pass, "driver's verdict pass",
 			    "driver's verdict %s", pass ? "pass" : "fail");
 	else
-		ftest_judge(x, "2-23", "driver's verdict agrees", !pass,
+		ftest_judge(x, "2-23.agrees", "driver's verdict agrees", !pass,
 			    "fail when a window is missed", "%s",
 			    pass ? "pass" : "fail");
 }
@@ -313,7 +313,7 @@ static void judge_selftest_verdict(struct ftest_ctx *x, bool pass,
 		 unavailable);
 	for (axis = 0; axis < AS9888_AXES; axis++)
 		ftest_skip_selftest_axis(x, axis, why);
-	ftest_judge(x, "2-23", "self-test verdict of the driver", pass,
+	ftest_judge(x, "2-23.verdict", "self-test verdict of the driver", pass,
 		    "pass (windows of 2-17..2-22, no overflow, HST)",
 		    "%s; the adjusted readings were not seen (%s)",
 		    pass ? "pass" : "fail", unavailable);
@@ -327,16 +327,16 @@ static int iio_step2(struct ftest_ctx *x)
 	char val[IIO_ATTR_MAX], path[IIO_PATH_MAX], why[IIO_ERR_LEN];
 	int ret;
 
-	ftest_skip(x, "2-4", "INT2 pin check (D11)", "the driver does not use INT2");
+	ftest_skip(x, "2-4.int2", "INT2 pin check (D11)", "the driver does not use INT2");
 	ret = iio_write_attr(d->dir, "selftest", "1");
-	if (!ftest_judge(x, "2-4", "measurement completes", !ret,
+	if (!ftest_judge(x, "2-4.drdy", "measurement completes", !ret,
 			 "the driver's selftest runs both measurements", "%s",
 			 ret ? strerror(-ret) : "done"))
 		return 0;
 	ret = iio_read_attr(d->dir, "selftest", val, sizeof(val));
 	if (ret < 0)
 		return ftest_io_failed(x, "2-15", "selftest result", ret);
-	if (!ftest_judge(x, "2-15", "self-test verdict readable",
+	if (!ftest_judge(x, "2-15.verdict", "self-test verdict readable",
 			 !iio_parse_selftest_verdict(val, &verdict) &&
 			 verdict != IIO_SELFTEST_NONE, "pass|fail after a test",
 			 "\"%s\"", val))
@@ -349,7 +349,7 @@ static int iio_step2(struct ftest_ctx *x)
 	} else {
 		ret = iio_parse_selftest_readings(val, adj);
 		if (ret == -EINVAL &&
-		    !ftest_judge(x, "2-15", "self-test readings readable", false,
+		    !ftest_judge(x, "2-15.readings", "self-test readings readable", false,
 				 "X Y Z, LSB with three decimals", "%s: \"%s\"",
 				 path, val) && x->stop)
 			return 0;
@@ -455,7 +455,7 @@ static int iio_level_setup(struct ftest_ctx *x)
 	ret = read_compensation(x);
 	if (ret)
 		return ret;
-	if (!ftest_judge(x, "3-1", "data-ready trigger", !find_trigger(d),
+	if (!ftest_judge(x, "3-1.trigger", "data-ready trigger", !find_trigger(d),
 			 "the driver's INT1 trigger exists",
 			 *d->trigger ? "%s" :
 			 "none: INT1 is not wired to the driver (%s); use --backend raw",
@@ -529,6 +529,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 {
 	struct iio_test_dev *d = x->dev;
 	uint64_t start = iio_now_ns(x);
+	char id[JUDGMENT_ID_LEN];
 	uint64_t deadline = start + (uint64_t)n * 1000000000ULL / IIO_TEST_RATE_HZ +
 			    IIO_SAMPLE_SLACK_MS * NS_PER_MS;
 	char why[JUDGMENT_TEXT_LEN];
@@ -558,8 +559,9 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 		x->stop = true;
 		return ret;
 	}
+	snprintf(id, sizeof(id), "%s.delivered", step);
 	if (ret == -ETIMEDOUT) {
-		ftest_judge(x, step, "samples delivered (INT1, ST1, EMPT)", false,
+		ftest_judge(x, id, "samples delivered (INT1, ST1, EMPT)", false,
 			    "N samples from the data-ready trigger",
 			    "%u of %u within %llu ms: INT1 silent or samples failing the driver's checks (see the kernel log)",
 			    r->n, n,
@@ -569,8 +571,9 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	}
 	if (ret)
 		return ftest_io_failed(x, step, d->chardev, ret);
+	snprintf(id, sizeof(id), "%s.int1", step);
 	if (!d->int1_seen)
-		ftest_judge(x, step, "INT1 pin check (D11)", true,
+		ftest_judge(x, id, "INT1 pin check (D11)", true,
 			    "the data-ready trigger fires on INT1",
 			    "%u samples from %s", r->n, d->trigger);
 	d->int1_seen = true;

@@ -34,6 +34,12 @@ struct level_run {
 	/* first offending sample of each per-sample check, or -1 */
 	int bad_st1, bad_tmps, bad_empt, bad_st2;
 	uint8_t bad_st1_val, bad_tmps_val, bad_empt_val, bad_st2_val;
+	/*
+	 * per axis, samples at -2048 ([0]) and at 2047 ([1]) (3-7..3-12),
+	 * and the first of them
+	 */
+	uint32_t saturated[AS9888_AXES][2];
+	int bad_acc[AS9888_AXES][2];
 	int64_t sq_sum[AS9888_AXES];
 };
 
@@ -93,6 +99,13 @@ bool ftest_judge(struct ftest_ctx *x, const char *step, const char *name,
 	__attribute__((format(printf, 6, 7)));
 void ftest_skip(struct ftest_ctx *x, const char *step, const char *name,
 		const char *why);
+/*
+ * The last judgment as a number: @v within @lo..@hi inclusive (NAN: no such
+ * limit), in @unit. A check of a condition uses the unit "bool", 1 = true.
+ */
+void ftest_value(struct ftest_ctx *x, double v, double lo, double hi,
+		 const char *unit);
+#define FTEST_BOOL(x, ok)	ftest_value(x, (ok) ? 1 : 0, 1, 1, "bool")
 /* A failure to reach the chip ends the test: returns @err */
 int ftest_io_failed(struct ftest_ctx *x, const char *step, const char *what,
 		    int err);

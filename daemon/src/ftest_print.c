@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 /* The factory test's report as text or JSON. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "ftest_print.h"
 #include "json.h"
@@ -12,6 +14,62 @@ static void print_axes_q16(FILE *out, const int32_t v[AS9888_AXES])
 		v[2] / 65536.0);
 }
 
+/* ISO 8601 UTC, e.g. "2026-11-23T20:45:00Z"; null before the test started */
+static void print_utc(FILE *out, int64_t t)
+{
+	time_t tt = (time_t)t;
+	struct tm tm;
+	char buf[32];
+
+	if (!t || !gmtime_r(&tt, &tm) ||
+	    !strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", &tm)) {
+		fputs("null", out);
+		return;
+	}
+	json_string(out, buf);
+}
+
+/* The chip's identity: its EEPROM fingerprint and bytes, once read */
+static void print_chip(FILE *out, const struct ftest_result *res)
+{
+	char hex[3 * AS9888_EEPROM_LEN];
+	int i;
+
+	if (!res->have_eeprom) {
+		fputs("null", out);
+		return;
+	}
+	for (i = 0; i < AS9888_EEPROM_LEN; i++)
+		snprintf(hex + 3 * i, sizeof(hex) - 3 * (size_t)i, "%02x%s",
+			 res->ee.raw[i], i < AS9888_EEPROM_LEN - 1 ? " " : "");
+	fprintf(out, "{\"fingerprint\": \"%016llx\", \"eeprom\": ",
+		(unsigned long long)record_fingerprint(res->ee.raw));
+	json_string(out, hex);
+	fputc('}', out);
+}
+
+/* What the operator chose */
+static void print_options(FILE *out, const struct ftest_opts *o)
+{
+	static const char axes[] = "xyz";
+	char g[3] = "";
+	int axis;
+
+	for (axis = 0; axis < AS9888_AXES && o->gravity_given; axis++)
+		if (o->gravity[axis]) {
+			g[0] = axes[axis];
+			g[1] = o->gravity[axis] > 0 ? '+' : '-';
+		}
+	fprintf(out, "{\"samples\": %u, \"permissible_error\": ", o->samples);
+	json_number(out, o->permissible_error_q16 ?
+		    o->permissible_error_q16 / 65536.0 : NAN);
+	fprintf(out, ", \"fluctuation\": %u, \"lpf\": %s, \"gravity\": ",
+		o->fluctuation, o->lpf ? "true" : "false");
+	json_string(out, g[0] ? g : NULL);
+	fprintf(out, ", \"keep_going\": %s, \"stable_timeout_ms\": %u}",
+		o->keep_going ? "true" : "false", o->stable_timeout_ms);
+}
+
 void ftest_print_json(FILE *out, const struct ftest_result *res,
 			       const char *record_path, bool stored)
 {
@@ -20,12 +78,24 @@ void ftest_print_json(FILE *out, const struct ftest_result *res,
 	uint32_t w;
 	bool first = true;
 
-	fputs("{\n  \"result\": ", out);
+	fprintf(out, "{\n  \"schema\": \"%s\",\n  \"schema_version\": %d,\n"
+		"  \"tool\": \"as9888-calibd\",\n  \"tool_version\": ",
+		FTEST_REPORT_SCHEMA, FTEST_REPORT_VERSION);
+	json_string(out, AS9888_VERSION);
+	fputs(",\n  \"timestamp\": ", out);
+	print_utc(out, res->started);
+	fputs(",\n  \"result\": ", out);
 	json_string(out, failed ? "fail" : "pass");
 	fputs(",\n  \"backend\": ", out);
 	json_string(out, res->backend);
+	fputs(",\n  \"chip\": ", out);
+	print_chip(out, res);
+	fputs(",\n  \"options\": ", out);
+	print_options(out, &res->opts);
 	fputs(",\n  \"failed_step\": ", out);
 	json_string(out, failed ? failed->step : NULL);
+	fputs(",\n  \"failed_id\": ", out);
+	json_string(out, failed ? failed->id : NULL);
 	fputs(",\n  \"steps\": ", out);
 	report_print_json_steps(out, &res->report);
 	fputs(",\n  \"warnings\": [", out);

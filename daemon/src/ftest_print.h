@@ -8,6 +8,17 @@
 
 #include "ftest.h"
 
+/*
+ * The JSON report's format: daemon/report.schema.json, whose "$id" ends in
+ * FTEST_REPORT_SCHEMA and whose schema_version is FTEST_REPORT_VERSION
+ * (raised when a field changes meaning or goes away; new fields keep it).
+ */
+#define FTEST_REPORT_SCHEMA	"as9888-factory-test-report"
+#define FTEST_REPORT_VERSION	1
+#ifndef AS9888_VERSION
+#define AS9888_VERSION		"unknown"
+#endif
+
 /* @record_path is printed when @stored */
 void ftest_print_json(FILE *out, const struct ftest_result *res,
 		      const char *record_path, bool stored);

@@ -21,17 +21,19 @@ static int regs_identify(struct ftest_ctx *x)
 
 	ret = chip_reset(c);
 	if (ret == -EOPNOTSUPP) {
-		ftest_skip(x, "1-2", "reset pulse (RSTN)", "backend has no reset line");
+		ftest_skip(x, "1-2.reset", "reset pulse (RSTN)", "backend has no reset line");
 		ret = 0;
 	} else if (ret) {
-		return ftest_io_failed(x, "1-2", "reset pulse (RSTN)", ret);
+		return ftest_io_failed(x, "1-2.reset", "reset pulse (RSTN)", ret);
 	}
 
 	ret = transport_read_reg(t, AS9888_REG_WIA, &wia);
 	if (ret)
 		return ftest_io_failed(x, "1-4", "device ID (WIA)", ret);
-	if (!ftest_judge(x, "1-4", "device ID (WIA)", wia == AS9888_WIA_VAL, "0x48",
-			 "0x%02x", wia))
+	ftest_judge(x, "1-4", "device ID (WIA)", wia == AS9888_WIA_VAL, "0x48",
+		    "0x%02x", wia);
+	ftest_value(x, wia, AS9888_WIA_VAL, AS9888_WIA_VAL, "code");
+	if (wia != AS9888_WIA_VAL)
 		return x->stop ? -ENODEV : 0;
 
 	/* D11: a written R/W register must read 0x00 after a reset pulse */
@@ -39,15 +41,16 @@ static int regs_identify(struct ftest_ctx *x)
 	if (!ret)
 		ret = chip_reset(c);
 	if (ret == -EOPNOTSUPP) {
-		ftest_skip(x, "1-2", "RSTN pin check (D11)", "RSTN not controlled");
+		ftest_skip(x, "1-2.rstn", "RSTN pin check (D11)", "RSTN not controlled");
 		return 0;
 	}
 	if (!ret)
 		ret = transport_read_reg(t, AS9888_REG_INT1EN, &val);
 	if (ret)
-		return ftest_io_failed(x, "1-2", "RSTN pin check (D11)", ret);
-	ftest_judge(x, "1-2", "RSTN pin check (D11)", val == 0,
+		return ftest_io_failed(x, "1-2.rstn", "RSTN pin check (D11)", ret);
+	ftest_judge(x, "1-2.rstn", "RSTN pin check (D11)", val == 0,
 		    "INT1EN reads 0x00 after reset", "INT1EN 0x%02x", val);
+	ftest_value(x, val, 0, 0, "code");
 
 	return 0;
 }
@@ -112,6 +115,7 @@ static int regs_trims(struct ftest_ctx *x)
 	else
 		ftest_judge(x, "1-39", "register R/W check (D10)", true,
 			    "read-back equals written", "10 trim registers match");
+	FTEST_BOOL(x, i == AS9888_TRIM_LEN);
 
 	return 0;
 }
@@ -141,6 +145,7 @@ static int measure(struct ftest_ctx *x, uint8_t ms, bool men,
 	struct transport *t = c->t;
 	uint64_t us = chip_measure_time_us(men, x->o->lpf);
 	bool int1 = c->use_int1;
+	char id[JUDGMENT_ID_LEN];
 	enum chip_wait how;
 	int ret;
 
@@ -148,28 +153,34 @@ static int measure(struct ftest_ctx *x, uint8_t ms, bool men,
 	if (ret)
 		return ftest_io_failed(x, step, "measurement", ret);
 
-	if (check_pins && int1)
-		ftest_judge(x, step, "INT1 pin check (D11)", how == CHIP_WAIT_INT1,
+	snprintf(id, sizeof(id), "%s.int1", step);
+	if (check_pins && int1) {
+		ftest_judge(x, id, "INT1 pin check (D11)", how == CHIP_WAIT_INT1,
 			    "rises within the measurement time + 5 ms",
 			    how == CHIP_WAIT_INT1 ? "rose" : "stayed low");
-	else if (check_pins)
-		ftest_skip(x, step, "INT1 pin check (D11)", "INT1 not monitored");
+		FTEST_BOOL(x, how == CHIP_WAIT_INT1);
+	} else if (check_pins) {
+		ftest_skip(x, id, "INT1 pin check (D11)", "INT1 not monitored");
+	}
+	snprintf(id, sizeof(id), "%s.int2", step);
 
 	if (check_pins && t->ops->pin_monitored(t, TRANSPORT_INT2)) {
 		/* INT2 is driven at the same instant as INT1 */
 		ret = how == CHIP_WAIT_TIMEOUT ? 0 :
 		      t->ops->wait_pin(t, TRANSPORT_INT2, 0);
 		if (ret < 0)
-			return ftest_io_failed(x, step, "INT2 pin check (D11)", ret);
-		ftest_judge(x, step, "INT2 pin check (D11)", ret > 0,
+			return ftest_io_failed(x, id, "INT2 pin check (D11)", ret);
+		ftest_judge(x, id, "INT2 pin check (D11)", ret > 0,
 			    "rises within the measurement time + 5 ms",
 			    ret > 0 ? "rose" : "stayed low");
+		FTEST_BOOL(x, ret > 0);
 	} else if (check_pins) {
-		ftest_skip(x, step, "INT2 pin check (D11)", "INT2 not monitored");
+		ftest_skip(x, id, "INT2 pin check (D11)", "INT2 not monitored");
 	}
 
 	if (how == CHIP_WAIT_TIMEOUT) {
-		ftest_judge(x, step, "measurement completes", false,
+		snprintf(id, sizeof(id), "%s.drdy", step);
+		ftest_judge(x, id, "measurement completes", false,
 			    "DRDY within the measurement time + 5 ms",
 			    "no data ready after %llu us",
 			    (unsigned long long)us + 5000);
@@ -215,32 +226,41 @@ static int regs_step2(struct ftest_ctx *x)
 	ret = transport_read_reg(t, AS9888_REG_INT1ST, &int1st);
 	if (ret)
 		return ftest_io_failed(x, "2-5", "INT1ST", ret);
-	if (!ftest_judge(x, "2-5", "INT1ST reflects INT1", int1st == 0x01, "0x01",
-			 "0x%02x", int1st) && x->stop)
+	ftest_judge(x, "2-5", "INT1ST reflects INT1", int1st == 0x01, "0x01",
+		    "0x%02x", int1st);
+	ftest_value(x, int1st, 1, 1, "code");
+	if (x->stop)
 		return 0;
-	if (!ftest_judge(x, "2-6", "ST1 data ready", s.st1 == AS9888_ST1_DRDY_MSK,
-			 "0x01", "0x%02x", s.st1) && x->stop)
+	ftest_judge(x, "2-6", "ST1 data ready", s.st1 == AS9888_ST1_DRDY_MSK,
+		    "0x01", "0x%02x", s.st1);
+	ftest_value(x, s.st1, AS9888_ST1_DRDY_MSK, AS9888_ST1_DRDY_MSK, "code");
+	if (x->stop)
 		return 0;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		char name[32];
 
 		snprintf(name, sizeof(name), "magnetometer %c no overflow",
 			 ftest_axis_name[axis]);
-		if (!ftest_judge(x, ovf_step[axis], name,
-				 !as9888_mag_overflow(s.mag[axis]), "-4096 < H < 4095",
-				 "%d", s.mag[axis]) && x->stop)
+		ftest_judge(x, ovf_step[axis], name,
+			    !as9888_mag_overflow(s.mag[axis]), "-4096 < H < 4095",
+			    "%d", s.mag[axis]);
+		ftest_value(x, s.mag[axis], -4095, 4094, "LSB");
+		if (x->stop)
 			return 0;
 	}
-	if (!ftest_judge(x, "2-13", "ST2 normal end", s.st2 == 0, "0x00", "0x%02x",
-			 s.st2) && x->stop)
+	ftest_judge(x, "2-13", "ST2 normal end", s.st2 == 0, "0x00", "0x%02x",
+		    s.st2);
+	ftest_value(x, s.st2, 0, 0, "code");
+	if (x->stop)
 		return 0;
 
 	ret = measure(x, AS9888_MS_SELF_TEST, true, "2-15", false, &s);
 	if (ret || x->stop)
 		return ret;
-	if (!ftest_judge(x, "2-16", "ST1 data ready (self-test)",
-			 s.st1 == AS9888_ST1_DRDY_MSK, "0x01", "0x%02x", s.st1) &&
-	    x->stop)
+	ftest_judge(x, "2-16", "ST1 data ready (self-test)",
+		    s.st1 == AS9888_ST1_DRDY_MSK, "0x01", "0x%02x", s.st1);
+	ftest_value(x, s.st1, AS9888_ST1_DRDY_MSK, AS9888_ST1_DRDY_MSK, "code");
+	if (x->stop)
 		return 0;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		uint8_t ehc = ee->axis[axis].ehc;
@@ -255,6 +275,7 @@ static int regs_step2(struct ftest_ctx *x)
 	}
 	ftest_judge(x, "2-23", "ST2 normal end (self-test)", s.st2 == 0, "0x00",
 		    "0x%02x", s.st2);
+	ftest_value(x, s.st2, 0, 0, "code");
 
 	return 0;
 }
@@ -296,6 +317,7 @@ static int regs_write_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES])
 	ftest_judge(x, "3-26", "DAC written (3-24..3-26, D2)",
 		    !memcmp(back, dac, AS9888_AXES), "read-back equals DACopt",
 		    "0x%02x 0x%02x 0x%02x", back[0], back[1], back[2]);
+	FTEST_BOOL(x, !memcmp(back, dac, AS9888_AXES));
 
 	return 0;
 }

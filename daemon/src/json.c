@@ -1,6 +1,16 @@
 // SPDX-License-Identifier: GPL-2.0
 /* Minimal JSON output helpers. */
+#include <math.h>
+
 #include "json.h"
+
+void json_number(FILE *out, double v)
+{
+	if (isnan(v) || isinf(v))
+		fputs("null", out);
+	else
+		fprintf(out, "%.10g", v);
+}
 
 void json_string(FILE *out, const char *s)
 {

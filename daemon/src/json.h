@@ -7,5 +7,7 @@
 
 /* Print @s as a JSON string literal, escaped; NULL prints null. */
 void json_string(FILE *out, const char *s);
+/* Print @v as a JSON number; NAN (and infinities) print null. */
+void json_number(FILE *out, double v);
 
 #endif

@@ -1,11 +1,49 @@
 // SPDX-License-Identifier: GPL-2.0
 /* The judgments of a factory test run, and their text and JSON forms. */
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "json.h"
 #include "report.h"
+
+static bool id_taken(const struct report *r, const struct judgment *j,
+		     const char *id)
+{
+	const struct judgment *i;
+
+	for (i = r->items; i < j; i++)
+		if (!strcmp(i->id, id))
+			return true;
+
+	return false;
+}
+
+static void set_id(const struct report *r, struct judgment *j, const char *step)
+{
+	size_t len = strcspn(step, ".");
+	unsigned int n;
+
+	snprintf(j->step, sizeof(j->step), "%.*s", (int)len, step);
+	snprintf(j->id, sizeof(j->id), "%s", step);
+	for (n = 2; id_taken(r, j, j->id); n++)
+		snprintf(j->id, sizeof(j->id), "%.20s.%u", step, n);
+}
+
+void report_set_value(struct report *r, double value, double low, double high,
+		      const char *unit)
+{
+	struct judgment *j;
+
+	if (!r->count)
+		return;
+	j = &r->items[r->count - 1];
+	j->value = value;
+	j->low = low;
+	j->high = high;
+	snprintf(j->unit, sizeof(j->unit), "%s", unit ? unit : "");
+}
 
 enum judgment_result report_add(struct report *r, const char *step,
 				const char *name, enum judgment_result result,
@@ -28,7 +66,9 @@ enum judgment_result report_add(struct report *r, const char *step,
 	}
 
 	j = &r->items[r->count++];
-	snprintf(j->step, sizeof(j->step), "%s", step);
+	set_id(r, j, step);
+	j->value = j->low = j->high = NAN;
+	j->unit[0] = '\0';
 	snprintf(j->name, sizeof(j->name), "%s", name);
 	snprintf(j->limits, sizeof(j->limits), "%s", limits ? limits : "");
 	va_start(ap, measured);
@@ -75,7 +115,7 @@ void report_print_text(FILE *out, const struct report *r)
 	for (i = 0; i < r->count; i++) {
 		const struct judgment *j = &r->items[i];
 
-		fprintf(out, "%-6s %-4s %s: %s", j->step,
+		fprintf(out, "%-6s %-4s %s: %s", j->id,
 			judgment_result_str(j->result), j->name, j->measured);
 		if (j->limits[0])
 			fprintf(out, " (limits: %s)", j->limits);
@@ -92,7 +132,9 @@ void report_print_json_steps(FILE *out, const struct report *r)
 		const struct judgment *j = &r->items[i];
 
 		fputs(i ? ",\n    {" : "\n    {", out);
-		fputs("\"step\": ", out);
+		fputs("\"id\": ", out);
+		json_string(out, j->id);
+		fputs(", \"step\": ", out);
 		json_string(out, j->step);
 		fputs(", \"name\": ", out);
 		json_string(out, j->name);
@@ -102,6 +144,14 @@ void report_print_json_steps(FILE *out, const struct report *r)
 		json_string(out, j->limits);
 		fputs(", \"result\": ", out);
 		json_string(out, judgment_result_str(j->result));
+		fputs(", \"value\": ", out);
+		json_number(out, j->value);
+		fputs(", \"low\": ", out);
+		json_number(out, j->low);
+		fputs(", \"high\": ", out);
+		json_number(out, j->high);
+		fputs(", \"unit\": ", out);
+		json_string(out, j->unit[0] ? j->unit : NULL);
 		fputc('}', out);
 	}
 	fputs(r->count ? "\n  ]" : "]", out);

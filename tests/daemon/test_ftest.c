@@ -211,7 +211,7 @@ static void permissible_error(void **state)
 	ftest_result_free(&res);
 
 	o.permissible_error_q16 = 65536 / 100;	/* 0.01 LSB */
-	expect_failure("noise = 4\nseed = 3\n", &o, "3-7", "too noisy");
+	expect_failure("noise = 4\nseed = 3\n", &o, "3-3", "too noisy");
 }
 
 static void lpf_run(void **state)
@@ -260,7 +260,7 @@ static void faults(void **state)
 	expect_failure("fault = no_drdy\n", NULL, "2-4", "INT1");
 	expect_failure("fault = hofl\n", NULL, "2-7", "overflow");
 	expect_failure("fault = selftest_weak\n", NULL, "2-21", "self-test Z");
-	expect_failure("fault = saturate_z\n", NULL, "3-16", "maximum of Z");
+	expect_failure("fault = saturate_z\n", NULL, "3-12", "Z below 2047");
 	expect_failure("fault = stuck_x\n", NULL, "3-23", "not level");
 }
 

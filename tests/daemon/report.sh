@@ -1,0 +1,86 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# The factory test's JSON report against its schema (daemon/report.schema.json)
+# with Debian's python3-jsonschema: the reports of passing runs (every
+# option), of every fault of datasheet section 8 (stopping and with
+# --keep-going), and of every tampered judgment of test_judgments all
+# validate, have unique IDs and values consistent with their results; a
+# passing run has every judgment of the application note under its own ID.
+# Output is TAP.
+# Usage: report.sh PATH-TO-as9888-calibd PATH-TO-test_judgments
+set -u
+
+calibd=${1:?usage: report.sh PATH-TO-as9888-calibd PATH-TO-test_judgments}
+judgments=${2:?usage: report.sh PATH-TO-as9888-calibd PATH-TO-test_judgments}
+top=$(cd "$(dirname "$0")/../.." && pwd)
+schema=$top/daemon/report.schema.json
+checker=$top/tests/daemon/report_check.py
+python3 -c 'import jsonschema' 2>/dev/null ||
+	{ echo "1..0 # SKIP python3-jsonschema is not installed (scripts/setup.sh installs it)"; exit 77; }
+work=$(mktemp -d /tmp/as9888-report-XXXXXX)
+trap 'rm -rf "$work"' EXIT
+export ASAN_OPTIONS=detect_leaks=1
+# shellcheck source=../lib/tap.sh
+. "$(dirname "$0")/../lib/tap.sh"
+TAP_SHOW="$work/check"
+
+vt="--backend sim --sim-clock virtual"
+# report NAME UNIT-TEXT [OPTIONS...]: run factory-test --json into $work/NAME.json
+report() {
+	local name=$1 unit=$2
+	shift 2
+	printf '%s\n' "$unit" >"$work/$name.unit"
+	# shellcheck disable=SC2086
+	"$calibd" factory-test $vt --record "$work/rec-$name" --unit "$work/$name.unit" \
+		--json "$@" >"$work/$name.json" 2>"$work/$name.err"
+}
+valid() { python3 "$checker" "$schema" "$@" >"$work/check" 2>&1; }
+
+report pass "seed = 3"
+check "a passing report validates, with every judgment of the application note under its own ID" \
+	valid --complete "$work/pass.json"
+report lpf "noise = 1.5" --lpf --gravity z- --samples 16
+report pe "noise = 2" --permissible-error 0.25
+report side "up = -1 0 0" --fluctuation 20
+check "passing reports with --lpf --gravity --samples, --permissible-error, --fluctuation validate" \
+	valid --complete "$work/lpf.json" "$work/pe.json" "$work/side.json"
+check "the operator's options are in the report" python3 -c "
+import json, sys
+d = json.load(open('$work/lpf.json')); o = d['options']
+e = json.load(open('$work/pe.json'))['options']
+sys.exit(not (o['lpf'] and o['gravity'] == 'z-' and o['samples'] == 16 and
+              o['permissible_error'] is None and e['permissible_error'] == 0.25 and
+              d['chip']['fingerprint'] == '676f64b435a720ba' and d['backend'] == 'sim'))"
+
+faults="no_drdy int1_open int2_open rstn_open wia eeprom_blank stuck_x saturate_z nak selftest_weak hofl"
+files=()
+for f in $faults; do
+	report "$f" "fault = $f"
+	report "$f-kg" "fault = $f" --keep-going
+	files+=("$work/$f.json" "$work/$f-kg.json")
+done
+check "the reports of every fault, stopping and with --keep-going, validate" valid "${files[@]}"
+check "every fault's report says fail" python3 -c "
+import json, sys
+sys.exit(any(json.load(open(f))['result'] != 'fail' for f in sys.argv[1:]))" "${files[@]}"
+
+mkdir -p "$work/tampered"
+AS9888_REPORT_DIR=$work/tampered "$judgments" >"$work/judgments.log" 2>&1
+check "test_judgments ran and left a report per tampered judgment" \
+	test "$(find "$work/tampered" -name '*.json' | wc -l)" -gt 40
+check "the report of every tampered judgment validates" valid "$work"/tampered/*.json
+
+# the checker itself sees a bad report
+python3 - "$work/pass.json" "$work/broken.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["steps"][1]["id"] = d["steps"][0]["id"]
+j = [s for s in d["steps"] if s["low"] is not None and s["result"] == "pass"][3]
+j["value"] = j["low"] - 1
+json.dump(d, open(sys.argv[2], "w"))
+PY
+check "a report with a repeated ID and a value outside its passing limits is refused" \
+	eval '! valid "$work/broken.json" && grep -q "not unique" "$work/check" && grep -q "but result pass" "$work/check"'
+
+tap_end
