@@ -208,16 +208,15 @@ int ensure_parent_dir(const char *path, mode_t mode, char *err, size_t errlen)
 	return 0;
 }
 
-int durable_rename(const char *from, const char *to, char *err, size_t errlen)
+/* fsync the directory of @path, after a change of its entries */
+static int sync_parent(const char *path, char *err, size_t errlen)
 {
 	char dir[PATH_MAX], base[PATH_MAX];
 	int dfd, ret;
 
-	ret = split_path(to, dir, base, err, errlen);
+	ret = split_path(path, dir, base, err, errlen);
 	if (ret)
 		return ret;
-	if (rename(from, to))
-		return failed(err, errlen, "cannot rename to", to, errno);
 	dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
 	if (dfd < 0)
 		return failed(err, errlen, "cannot open directory", dir, errno);
@@ -225,4 +224,20 @@ int durable_rename(const char *from, const char *to, char *err, size_t errlen)
 	close(dfd);
 
 	return ret;
+}
+
+int durable_rename(const char *from, const char *to, char *err, size_t errlen)
+{
+	if (rename(from, to))
+		return failed(err, errlen, "cannot rename to", to, errno);
+
+	return sync_parent(to, err, errlen);
+}
+
+int durable_unlink(const char *path, char *err, size_t errlen)
+{
+	if (unlink(path) && errno != ENOENT)
+		return failed(err, errlen, "cannot remove", path, errno);
+
+	return sync_parent(path, err, errlen);
 }

@@ -30,6 +30,9 @@ long read_file_nofollow(const char *path, char *buf, size_t max, char *err,
 /* rename(2) @from to @to (same directory) and fsync the directory */
 int durable_rename(const char *from, const char *to, char *err, size_t errlen);
 
+/* unlink(2) @path and fsync its directory */
+int durable_unlink(const char *path, char *err, size_t errlen);
+
 /* Create the directory of @path (one level) with @mode if it is missing. */
 int ensure_parent_dir(const char *path, mode_t mode, char *err, size_t errlen);
 

@@ -66,21 +66,17 @@ int cmd_recalibrate(const struct cli_opts *o)
 }
 
 /*
- * current := previous, previous := current, never losing either: the
- * current record is first parked in <path>.previous.swap, which only a
- * completed rollback renames to <path>.previous.
+ * current := previous, previous := current, as one crash-safe change
+ * (record_pair.h): never losing either.
  */
 int cmd_rollback(const struct cli_opts *o)
 {
-	char prev[PATH_MAX], swap[PATH_MAX], err[SESSION_ERR_LEN];
+	char prev[PATH_MAX], err[SESSION_ERR_LEN];
 	char cur_text[RECORD_MAX_SIZE], prev_text[RECORD_MAX_SIZE];
 	struct calib_record cur, before;
 	long cur_len, prev_len;
-	int ret;
 
 	snprintf(prev, sizeof(prev), "%s%s", o->record_path, SESSION_PREVIOUS_SUFFIX);
-	snprintf(swap, sizeof(swap), "%s%s.swap", o->record_path,
-		 SESSION_PREVIOUS_SUFFIX);
 	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
 		return EXIT_FAILURE;
 	if (access(prev, F_OK) && errno == ENOENT) {
@@ -88,28 +84,18 @@ int cmd_rollback(const struct cli_opts *o)
 			prev);
 		return EXIT_FAILURE;
 	}
-	if (session_load_record(o->record_path, &cur) ||
-	    session_load_record(prev, &before))
+	cur_len = session_read_record(o->record_path, &cur, cur_text);
+	prev_len = cur_len < 0 ? cur_len : session_read_record(prev, &before, prev_text);
+	if (cur_len < 0 || prev_len < 0)
 		return EXIT_FAILURE;
 	if (memcmp(cur.eeprom, before.eeprom, AS9888_EEPROM_LEN)) {
 		fprintf(stderr, "as9888-calibd: rollback: %s belongs to another chip; nothing changed\n",
 			prev);
 		return EXIT_FAILURE;
 	}
-	cur_len = read_file_nofollow(o->record_path, cur_text, sizeof(cur_text),
-				     err, sizeof(err));
-	prev_len = read_file_nofollow(prev, prev_text, sizeof(prev_text), err,
-				      sizeof(err));
-	ret = cur_len < 0 || prev_len < 0 ? -EIO : 0;
-	if (!ret)
-		ret = atomic_write_file(swap, cur_text, (size_t)cur_len, RECORD_MODE,
-					err, sizeof(err));
-	if (!ret)
-		ret = atomic_write_file(o->record_path, prev_text, (size_t)prev_len,
-					RECORD_MODE, err, sizeof(err));
-	if (!ret)
-		ret = durable_rename(swap, prev, err, sizeof(err));
-	if (ret) {
+	if (record_pair_replace(o->record_path, prev_text, (size_t)prev_len,
+				cur_text, (size_t)cur_len, RECORD_MODE, err,
+				sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: rollback: %s\n", err);
 		return EXIT_FAILURE;
 	}

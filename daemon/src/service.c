@@ -39,6 +39,7 @@
 #include "request.h"
 #include "request_reply.h"
 #include "service_socket.h"
+#include "session.h"
 #include "uevent.h"
 
 /* Clients connected at once (reading, waiting or being served) */
@@ -559,6 +560,24 @@ static int serve_once(struct service *s)
 	return children_running(s) ? 1 : 0;
 }
 
+/*
+ * At start: a change of the record that a crash interrupted is finished or
+ * undone before anything reads the record (session_lock() does it).
+ */
+static void recover_record(const struct cli_opts *o)
+{
+	char journal[PATH_MAX];
+	int fd;
+
+	snprintf(journal, sizeof(journal), "%s%s", o->record_path,
+		 RECORD_PAIR_JOURNAL);
+	if (access(journal, F_OK))
+		return;
+	fd = session_lock(o->record_path, o->lock_timeout_s);
+	if (fd >= 0)
+		close(fd);
+}
+
 /* At start: every AS9888 IIO device already there gets its calibration */
 static void apply_present(struct service *s)
 {
@@ -592,6 +611,7 @@ int cmd_daemon(const struct cli_opts *o)
 		log_msg("no kernel uevents (%s): devices that appear later are not seen",
 			strerror(-s.uevent_fd));
 
+	recover_record(o);
 	log_msg("ready: record %s, socket %s", o->record_path, o->socket_path);
 	apply_present(&s);
 	while ((ret = serve_once(&s)) > 0)

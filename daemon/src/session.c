@@ -16,6 +16,7 @@
 #include "ftest.h"
 #include "iio.h"
 #include "lock_file.h"
+#include "record_pair.h"
 #include "session.h"
 
 int session_open_backend(const struct cli_opts *o, struct transport **t)
@@ -45,15 +46,15 @@ int session_open_backend(const struct cli_opts *o, struct transport **t)
 	return ret;
 }
 
-int session_load_record(const char *path, struct calib_record *rec)
+long session_read_record(const char *path, struct calib_record *rec, char *buf)
 {
-	char buf[RECORD_MAX_SIZE + 1], err[SESSION_ERR_LEN];
+	char err[SESSION_ERR_LEN];
 	long len;
 
 	len = read_file_nofollow(path, buf, RECORD_MAX_SIZE, err, sizeof(err));
 	if (len < 0) {
 		fprintf(stderr, "as9888-calibd: %s\n", err);
-		return (int)len;
+		return len;
 	}
 	if (record_parse(buf, (size_t)len, rec, err, sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: %s: not a valid record: %s\n", path,
@@ -61,7 +62,15 @@ int session_load_record(const char *path, struct calib_record *rec)
 		return -EINVAL;
 	}
 
-	return 0;
+	return len;
+}
+
+int session_load_record(const char *path, struct calib_record *rec)
+{
+	char buf[RECORD_MAX_SIZE];
+	long len = session_read_record(path, rec, buf);
+
+	return len < 0 ? (int)len : 0;
 }
 
 /*
@@ -72,7 +81,7 @@ int session_load_record(const char *path, struct calib_record *rec)
 int session_save_record(const char *path, struct calib_record *rec,
 			bool keep_previous, char *err, size_t errlen)
 {
-	char buf[RECORD_MAX_SIZE], old[RECORD_MAX_SIZE], prev[PATH_MAX];
+	char buf[RECORD_MAX_SIZE], old[RECORD_MAX_SIZE];
 	long old_len;
 	int len, ret;
 
@@ -86,22 +95,35 @@ int session_save_record(const char *path, struct calib_record *rec,
 	if (ret)
 		return ret;
 
-	if (keep_previous) {
-		old_len = read_file_nofollow(path, old, sizeof(old), err, errlen);
-		if (old_len < 0)
-			return (int)old_len;
-		if (snprintf(prev, sizeof(prev), "%s%s", path,
-			     SESSION_PREVIOUS_SUFFIX) >= (int)sizeof(prev)) {
-			snprintf(err, errlen, "record path too long");
-			return -ENAMETOOLONG;
-		}
-		ret = atomic_write_file(prev, old, (size_t)old_len, RECORD_MODE,
-					err, errlen);
-		if (ret)
-			return ret;
-	}
+	if (!keep_previous)
+		return atomic_write_file(path, buf, (size_t)len, RECORD_MODE, err,
+					 errlen);
+	old_len = read_file_nofollow(path, old, sizeof(old), err, errlen);
+	if (old_len < 0)
+		return (int)old_len;
 
-	return atomic_write_file(path, buf, (size_t)len, RECORD_MODE, err, errlen);
+	return record_pair_replace(path, buf, (size_t)len, old, (size_t)old_len,
+				   RECORD_MODE, err, errlen);
+}
+
+/* A change of the record and its previous one that was cut short: finished or undone */
+static int recover(const char *path)
+{
+	enum record_pair_recovery what;
+	char err[SESSION_ERR_LEN];
+	int ret;
+
+	ret = record_pair_recover(path, &what, err, sizeof(err));
+	if (ret)
+		fprintf(stderr, "as9888-calibd: %s\n", err);
+	else if (what == RECORD_PAIR_UNDONE)
+		fprintf(stderr, "as9888-calibd: %s: an interrupted change was undone; %s%s is as before it\n",
+			path, path, RECORD_PAIR_PREVIOUS);
+	else if (what == RECORD_PAIR_FINISHED)
+		fprintf(stderr, "as9888-calibd: %s: an interrupted change was finished; %s%s now holds the record it replaced\n",
+			path, path, RECORD_PAIR_PREVIOUS);
+
+	return ret;
 }
 
 /*
@@ -138,6 +160,8 @@ int session_lock(const char *path, unsigned int timeout_s)
 	else if (ret)
 		fprintf(stderr, "as9888-calibd: cannot lock %s: %s\n", lock,
 			strerror(-ret));
+	if (!ret)
+		ret = recover(path);
 	if (ret) {
 		close(fd);
 		return ret;

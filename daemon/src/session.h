@@ -10,17 +10,20 @@
 #include "cli.h"
 #include "ftest.h"
 #include "record.h"
+#include "record_pair.h"
 #include "transport.h"
 
 #define RECORD_MODE		0644
 #define STATE_DIR_MODE		0755
 #define SESSION_ERR_LEN		512
-#define SESSION_PREVIOUS_SUFFIX	".previous"
+#define SESSION_PREVIOUS_SUFFIX	RECORD_PAIR_PREVIOUS
 #define SESSION_LOCK_SUFFIX	".lock"
 
 /* Both print the reason to stderr and return -errno on failure */
 int session_open_backend(const struct cli_opts *o, struct transport **t);
 int session_load_record(const char *path, struct calib_record *rec);
+/* The same, keeping the text in @buf (RECORD_MAX_SIZE): its length or -errno */
+long session_read_record(const char *path, struct calib_record *rec, char *buf);
 int session_save_record(const char *path, struct calib_record *rec,
 			bool keep_previous, char *err, size_t errlen);
 
@@ -48,7 +51,9 @@ int session_activate_record(const struct cli_opts *o,
 
 /*
  * Lock @path's record for writing, waiting at most @timeout_s for another
- * holder. The lock's fd (held until exit), or -errno (said on stderr).
+ * holder, and finish or undo a change of the record and its previous one
+ * that was interrupted (record_pair.h). The lock's fd (held until exit),
+ * or -errno (said on stderr).
  */
 int session_lock(const char *path, unsigned int timeout_s);
 

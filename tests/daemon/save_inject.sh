@@ -82,6 +82,98 @@ run --samples 13 >/dev/null && grep -q '^samples = 13$' "$rec" && [ ! -e "$rec.n
 if [ $hits -lt 10 ]; then
 	not_ok "only $hits injection points were reached"
 fi
+
+# The record and its previous one as a pair (daemon/src/record_pair.h):
+# rollback, recalibrate and factory-test are each interrupted at every
+# system call that touches the record's files (a SIGKILL, standing in for
+# a power cut), or see ENOSPC at every write, fsync and close and EROFS at
+# every open, rename, unlink and fchmod. Then one rollback follows (it
+# finishes or undoes what was interrupted, then swaps), and the pair must
+# be what the old pair or the new pair gives after that swap: no record is
+# ever lost or duplicated, and no temporary or journal file stays.
+pair_runs=0
+run_sim() { "$calibd" "$@" --backend sim --sim-clock virtual --record "$rec"; }
+run_sim factory-test >/dev/null && run_sim recalibrate --samples 11 >/dev/null ||
+	{ echo "Bail out! no record pair"; exit 1; }
+cp "$rec" "$work/R"
+cp "$rec.previous" "$work/P"
+files="$rec $rec.new $rec.previous $rec.previous.swap $rec.previous.swap.new $rec.lock $work"
+trace_paths=()
+for f in $files; do trace_paths+=(-P "$f"); done
+reset_pair() {
+	cp "$work/R" "$rec"
+	cp "$work/P" "$rec.previous"
+	rm -f "$rec.new" "$rec.previous.swap" "$rec.previous.swap.new"
+}
+# is_new FILE: a valid record from the interrupted command (12 samples)
+is_new() { grep -q '^samples = 12$' "$1" && "$calibd" show --record "$1" >/dev/null 2>&1; }
+same() { cmp -s "$1" "$2"; }
+# pair_ok CMD: (record, previous) after CMD and one rollback
+pair_ok() {
+	case $1 in
+	rollback)	# old (R,P) -> (P,R); new (P,R) -> (R,P)
+		{ same "$rec" "$work/P" && same "$rec.previous" "$work/R"; } ||
+			{ same "$rec" "$work/R" && same "$rec.previous" "$work/P"; } ;;
+	recalibrate)	# old (R,P) -> (P,R); new (N,R) -> (R,N)
+		{ same "$rec" "$work/P" && same "$rec.previous" "$work/R"; } ||
+			{ same "$rec" "$work/R" && is_new "$rec.previous"; } ;;
+	factory-test)	# old (R,P) -> (P,R); new (N,P) -> (P,N)
+		same "$rec" "$work/P" &&
+			{ same "$rec.previous" "$work/R" || is_new "$rec.previous"; } ;;
+	esac
+}
+# the command's calls on the record's files, each "NAME K" (its K-th NAME)
+calls_of() {
+	reset_pair
+	strace -f -qq -o "$work/trace" "${trace_paths[@]}" "$calibd" "$@" \
+		--backend sim --sim-clock virtual --record "$rec" >/dev/null 2>&1
+	awk '{ sub(/\(.*/, "", $2); if ($2 !~ /^[a-z_0-9]+$/) next; print $2, ++k[$2] }' "$work/trace"
+}
+for cmd in rollback recalibrate factory-test; do
+	args=("$cmd")
+	[ "$cmd" = rollback ] || args+=(--samples 12)
+	while read -r call k; do
+		for action in kill ENOSPC EROFS; do
+			case $action:$call in
+			kill:*) inject="$call:signal=KILL:when=$k" ;;
+			ENOSPC:write|ENOSPC:fsync|ENOSPC:close) inject="$call:error=ENOSPC:when=$k" ;;
+			EROFS:openat|EROFS:rename|EROFS:renameat|EROFS:renameat2|EROFS:unlinkat|EROFS:fchmod|EROFS:mkdir)
+				inject="$call:error=EROFS:when=$k" ;;
+			*) continue ;;
+			esac
+			reset_pair
+			strace -f -qq -o "$work/trace" "${trace_paths[@]}" -e inject="$inject" \
+				"$calibd" "${args[@]}" --backend sim --sim-clock virtual \
+				--record "$rec" >"$work/out" 2>"$work/stderr" &
+			wait $! 2>/dev/null
+			rc=$?
+			pair_runs=$((pair_runs + 1))
+			what="$cmd, $action at $call #$k"
+			if [ "$action" != kill ] && [ $rc -ne 0 ] && [ ! -s "$work/stderr" ] &&
+			   ! grep -q 'fail store calibration record' "$work/out"; then
+				not_ok "$what: failed without saying why"
+				continue
+			fi
+			if [ "$action" != kill ] && [ -e "$rec.new" -o -e "$rec.previous.swap.new" ]; then
+				not_ok "$what: temporary file left behind"
+				continue
+			fi
+			run_sim rollback >"$work/out2" 2>"$work/stderr2"
+			rc2=$?
+			if [ $rc2 -ne 0 ]; then
+				not_ok "$what: the next rollback fails: $(head -c 300 "$work/stderr2")"
+			elif [ -e "$rec.previous.swap" ]; then
+				not_ok "$what: journal left after the next rollback"
+			elif ! pair_ok "$cmd"; then
+				not_ok "$what: record pair neither the old nor the new one"
+			else
+				ok "$what: pair intact (exit $rc)"
+			fi
+		done
+	done < <(calls_of "${args[@]}")
+done
+[ $pair_runs -ge 100 ] || not_ok "only $pair_runs pair injections ran"
+
 echo "1..$n"
-echo "# $hits injection points, $fail failures"
+echo "# $hits save injection points, $pair_runs record-pair injections, $fail failures"
 [ $fail -eq 0 ]
