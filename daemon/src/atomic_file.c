@@ -148,6 +148,13 @@ long read_file_nofollow(const char *path, char *buf, size_t max, char *err,
 			size_t errlen)
 {
 	struct stat st;
+
+	return read_file_nofollow_stat(path, buf, max, &st, err, errlen);
+}
+
+long read_file_nofollow_stat(const char *path, char *buf, size_t max,
+			     struct stat *st, char *err, size_t errlen)
+{
 	size_t len = 0;
 	int fd;
 
@@ -159,7 +166,7 @@ long read_file_nofollow(const char *path, char *buf, size_t max, char *err,
 		}
 		return failed(err, errlen, "cannot open", path, errno);
 	}
-	if (fstat(fd, &st) || !S_ISREG(st.st_mode)) {
+	if (fstat(fd, st) || !S_ISREG(st->st_mode)) {
 		snprintf(err, errlen, "%s is not a regular file", path);
 		close(fd);
 		return -EINVAL;

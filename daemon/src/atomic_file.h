@@ -7,6 +7,7 @@
 #define AS9888_ATOMIC_FILE_H
 
 #include <stddef.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 
 /*
@@ -26,6 +27,10 @@ int atomic_write_file(const char *path, const void *data, size_t len,
  */
 long read_file_nofollow(const char *path, char *buf, size_t max, char *err,
 			size_t errlen);
+
+/* The same, with the status of the file read in @st */
+long read_file_nofollow_stat(const char *path, char *buf, size_t max,
+			     struct stat *st, char *err, size_t errlen);
 
 /* rename(2) @from to @to (same directory) and fsync the directory */
 int durable_rename(const char *from, const char *to, char *err, size_t errlen);

@@ -35,6 +35,7 @@ enum {
 	OPT_SOCKET_MODE,
 	OPT_SOCKET_GROUP,
 	OPT_LOCK_TIMEOUT,
+	OPT_STATE_GROUP,
 };
 
 static const struct option long_opts[] = {
@@ -63,6 +64,7 @@ static const struct option long_opts[] = {
 	{ "socket-mode", required_argument, NULL, OPT_SOCKET_MODE },
 	{ "socket-group", required_argument, NULL, OPT_SOCKET_GROUP },
 	{ "lock-timeout", required_argument, NULL, OPT_LOCK_TIMEOUT },
+	{ "state-group", required_argument, NULL, OPT_STATE_GROUP },
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -179,6 +181,7 @@ static bool option_allowed(enum cli_command cmd, int opt)
 
 	switch (opt) {
 	case OPT_RECORD:
+	case OPT_STATE_GROUP:
 		return cmd != CLI_REQUEST;
 	case OPT_HELP:
 		return true;
@@ -400,6 +403,11 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 				return bad(err, errlen, "--stable-timeout takes milliseconds 0..600000, not \"%s\"",
 					   optarg);
 			o->ftest.stable_timeout_ms = (uint32_t)v;
+			break;
+		case OPT_STATE_GROUP:
+			if (!*optarg)
+				return bad(err, errlen, "--state-group needs a group name");
+			o->state_group = optarg;
 			break;
 		case OPT_LOCK_TIMEOUT:
 			if (cli_parse_fixed(optarg, 0, 0, 3600, &v))

@@ -64,6 +64,7 @@ enum cli_command {
  * @socket_group:	its group (NULL: the daemon's)
  * @request:		what "request" asks the daemon
  * @lock_timeout_s:	longest wait for the record's lock
+ * @state_group:	group trusted to write the record's files (NULL: none)
  * @backend_auto:	@backend was picked, not given by --backend
  * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
  * @ftest:		factory-test options
@@ -85,6 +86,7 @@ struct cli_opts {
 	const char *socket_group;
 	const char *request;
 	unsigned int lock_timeout_s;
+	const char *state_group;
 	bool backend_auto;
 	char backend_why[CLI_BACKEND_WHY_LEN];
 	struct ftest_opts ftest;

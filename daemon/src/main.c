@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "session.h"
 
 #define EXIT_USAGE	2
 #define ERR_LEN		512
@@ -41,6 +42,9 @@ static const char usage_text[] =
 "  --unit FILE          simulated unit description (default: built-in unit)\n"
 "  --sim-clock real|virtual  simulator time base (default real)\n"
 "  --json               JSON output (factory-test, show)\n"
+"  --state-group NAME   group allowed to write the record's directory and\n"
+"                       files (otherwise they must be writable only by their\n"
+"                       owner, root or the user running the command)\n"
 "  --lock-timeout S     longest wait for the record's lock held by another\n"
 "                       command (factory-test, recalibrate, rollback,\n"
 "                       daemon; default 30)\n"
@@ -89,6 +93,11 @@ int main(int argc, char **argv)
 	ret = cli_parse(argc, argv, &o, err, sizeof(err));
 	if (ret) {
 		fprintf(stderr, "as9888-calibd: %s\nTry 'as9888-calibd help'.\n", err);
+		return EXIT_USAGE;
+	}
+
+	if (session_trust_setup(o.state_group, err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: %s\n", err);
 		return EXIT_USAGE;
 	}
 

@@ -8,6 +8,7 @@
 #include <unistd.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "atomic_file.h"
@@ -18,6 +19,7 @@
 #include "lock_file.h"
 #include "record_pair.h"
 #include "session.h"
+#include "storage_trust.h"
 
 int session_open_backend(const struct cli_opts *o, struct transport **t)
 {
@@ -46,12 +48,28 @@ int session_open_backend(const struct cli_opts *o, struct transport **t)
 	return ret;
 }
 
+/*
+ * Who may have written the record's files (storage_trust.h): the one
+ * policy of the process, set from its command line before any command.
+ */
+static struct storage_trust trust;
+
+int session_trust_setup(const char *state_group, char *err, size_t errlen)
+{
+	return storage_trust_init(&trust, state_group, err, errlen);
+}
+
 long session_read_record(const char *path, struct calib_record *rec, char *buf)
 {
 	char err[SESSION_ERR_LEN];
+	struct stat st;
 	long len;
 
-	len = read_file_nofollow(path, buf, RECORD_MAX_SIZE, err, sizeof(err));
+	len = read_file_nofollow_stat(path, buf, RECORD_MAX_SIZE, &st, err,
+				      sizeof(err));
+	if (len >= 0 && (storage_trust_parent(&trust, path, err, sizeof(err)) ||
+			 storage_trust_file(&trust, path, &st, err, sizeof(err))))
+		len = -EPERM;
 	if (len < 0) {
 		fprintf(stderr, "as9888-calibd: %s\n", err);
 		return len;
@@ -127,6 +145,41 @@ static int recover(const char *path)
 }
 
 /*
+ * Before anything is measured or written: @path can hold a record (a
+ * regular file or nothing yet) in a directory that exists or can be made,
+ * is not a symbolic link, and nobody else could have written.
+ */
+static int check_record_path(const char *path, char *err, size_t errlen)
+{
+	struct stat st;
+	int ret;
+
+	if (!lstat(path, &st) && !S_ISREG(st.st_mode)) {
+		snprintf(err, errlen, "%s is %s, not a record: give --record a path for a regular file",
+			 path, S_ISLNK(st.st_mode) ? "a symbolic link" :
+			 S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
+		return -EINVAL;
+	}
+	ret = ensure_parent_dir(path, STATE_DIR_MODE, err, errlen);
+	if (!ret)
+		ret = storage_trust_parent(&trust, path, err, errlen);
+
+	return ret;
+}
+
+static int check_lock(const char *lock, int fd, char *err, size_t errlen)
+{
+	struct stat st;
+
+	if (fstat(fd, &st)) {
+		snprintf(err, errlen, "cannot examine lock %s: %s", lock, strerror(errno));
+		return -errno;
+	}
+
+	return storage_trust_file(&trust, lock, &st, err, errlen);
+}
+
+/*
  * Commands that change the record take <path>.lock exclusively, so two of
  * them (a factory run and a recalibration, two recalibrations) never
  * interleave their writes; the second waits for the first, up to
@@ -137,13 +190,17 @@ int session_lock(const char *path, unsigned int timeout_s)
 	char lock[PATH_MAX], err[SESSION_ERR_LEN];
 	int fd, ret;
 
-	ret = ensure_parent_dir(path, STATE_DIR_MODE, err, sizeof(err));
+	ret = check_record_path(path, err, sizeof(err));
 	if (!ret && snprintf(lock, sizeof(lock), "%s%s", path, SESSION_LOCK_SUFFIX) >=
 		    (int)sizeof(lock)) {
 		snprintf(err, sizeof(err), "record path %s is too long", path);
 		ret = -ENAMETOOLONG;
 	}
 	fd = ret ? ret : lock_file_open(lock, RECORD_MODE, err, sizeof(err));
+	if (fd >= 0 && (ret = check_lock(lock, fd, err, sizeof(err)))) {
+		close(fd);
+		fd = ret;
+	}
 	if (fd < 0) {
 		fprintf(stderr, "as9888-calibd: %s\n", err);
 		return fd;

@@ -19,6 +19,13 @@
 #define SESSION_PREVIOUS_SUFFIX	RECORD_PAIR_PREVIOUS
 #define SESSION_LOCK_SUFFIX	".lock"
 
+/*
+ * The users whose record files are believed: root's and our own, and the
+ * group @state_group (NULL: none) may write them (storage_trust.h). Called
+ * once, before any record is read or written. 0 or -errno, why in @err.
+ */
+int session_trust_setup(const char *state_group, char *err, size_t errlen);
+
 /* Both print the reason to stderr and return -errno on failure */
 int session_open_backend(const struct cli_opts *o, struct transport **t);
 int session_load_record(const char *path, struct calib_record *rec);
