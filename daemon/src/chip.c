@@ -24,6 +24,8 @@ int chip_reset(struct chip *c)
 	struct transport *t = c->t;
 	int ret;
 
+	c->int1_dr = false;
+	c->powered_down = false;
 	ret = t->ops->set_rstn(t, false);
 	if (ret)
 		return ret;
@@ -34,6 +36,7 @@ int chip_reset(struct chip *c)
 	transport_sleep_ns(t, AS9888_T_BOOT_US * NS_PER_US);
 	/* a reset enters power-down at the rising edge: t_PD is covered */
 	c->pd_since_ns = transport_now_ns(t) - AS9888_T_PD_US * NS_PER_US;
+	c->powered_down = true;
 
 	return 0;
 }
@@ -51,11 +54,14 @@ int chip_set_mode(struct chip *c, uint8_t ms)
 			transport_sleep_ns(t, ready - now);
 	}
 
+	c->powered_down = false;
 	ret = transport_write_reg(t, AS9888_REG_MS, ms);
 	if (ret)
 		return ret;
-	if (ms == AS9888_MS_POWER_DOWN)
+	if (ms == AS9888_MS_POWER_DOWN) {
 		c->pd_since_ns = transport_now_ns(t);
+		c->powered_down = true;
+	}
 
 	return 0;
 }
@@ -103,6 +109,7 @@ int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
 			*how = CHIP_WAIT_INT1;
 			/* the chip went back to power-down at the latest now */
 			c->pd_since_ns = transport_now_ns(t);
+			c->powered_down = true;
 			return 0;
 		}
 		/* INT1 stayed low: let DRDY tell whether the chip finished */
@@ -115,6 +122,7 @@ int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
 	*how = ready ? CHIP_WAIT_DRDY : CHIP_WAIT_TIMEOUT;
 	if (ready) {
 		c->pd_since_ns = transport_now_ns(t);
+		c->powered_down = true;
 	} else {
 		/* abort whatever runs, so the chip is in power-down again */
 		ret = chip_set_mode(c, AS9888_MS_POWER_DOWN);
@@ -147,6 +155,28 @@ int chip_read_sample(struct chip *c, struct chip_sample *s)
 	s->tmps = buf[AS9888_REG_TMPS - AS9888_REG_ST1];
 	s->empt = buf[AS9888_REG_EMPT - AS9888_REG_ST1];
 	s->st2 = buf[AS9888_REG_ST2 - AS9888_REG_ST1];
+
+	return 0;
+}
+
+int chip_read_accel_sample(struct chip *c, struct chip_sample *s)
+{
+	uint8_t buf[AS9888_REG_ST2 - AS9888_REG_TMPS + 1];
+	int axis, ret;
+
+	ret = transport_read(c->t, AS9888_REG_ST1, &s->st1, 1);
+	if (!ret)
+		ret = transport_read(c->t, AS9888_REG_TMPS, buf, sizeof(buf));
+	if (ret)
+		return ret;
+
+	for (axis = 0; axis < CHIP_AXES; axis++) {
+		s->mag[axis] = 0;
+		s->acc[axis] = le16(&buf[AS9888_REG_A1XL - AS9888_REG_TMPS + 2 * axis]);
+	}
+	s->tmps = buf[0];
+	s->empt = buf[AS9888_REG_EMPT - AS9888_REG_TMPS];
+	s->st2 = buf[AS9888_REG_ST2 - AS9888_REG_TMPS];
 
 	return 0;
 }

@@ -19,11 +19,16 @@
  * @t:		the transport
  * @pd_since_ns: when the chip last entered power-down (as far as we know)
  * @use_int1:	wait on INT1 (else poll ST1 DRDY)
+ * @powered_down: the chip is known to be in power-down (after a reset, an
+ *		MS = 0 write or a completed single measurement)
+ * @int1_dr:	INT1EN is known to hold DR1EN (cleared by a reset)
  */
 struct chip {
 	struct transport *t;
 	uint64_t pd_since_ns;
 	bool use_int1;
+	bool powered_down;
+	bool int1_dr;
 };
 
 /* One burst of ST1..ST2, decoded */
@@ -52,6 +57,11 @@ int chip_set_mode(struct chip *c, uint8_t ms);
 int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
 		 enum chip_wait *how);
 int chip_read_sample(struct chip *c, struct chip_sample *s);
+/*
+ * The same with the magnetometer off (SLCT2 MEN = 0): ST1, then TMPS..ST2
+ * without the 6 magnetometer bytes between them (s->mag reads 0)
+ */
+int chip_read_accel_sample(struct chip *c, struct chip_sample *s);
 /* The datasheet time of a measurement with these SLCT2 settings */
 uint64_t chip_measure_time_us(bool men, bool alpf);
 

@@ -212,20 +212,71 @@ void level_run_add(struct level_run *r, const struct chip_sample *s)
 	r->n++;
 }
 
+/* Append @m's samples to @r's, as if one run had taken them all */
+static void level_run_merge(struct level_run *r, const struct level_run *m)
+{
+	int axis, end;
+
+#define MERGE_BAD(f)						\
+	do {							\
+		if (r->bad_##f < 0 && m->bad_##f >= 0) {	\
+			r->bad_##f = (int)r->n + m->bad_##f;	\
+			r->bad_##f##_val = m->bad_##f##_val;	\
+		}						\
+	} while (0)
+	MERGE_BAD(st1);
+	MERGE_BAD(tmps);
+	MERGE_BAD(empt);
+	MERGE_BAD(st2);
+#undef MERGE_BAD
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		r->sum[axis] += m->sum[axis];
+		r->sq_sum[axis] += m->sq_sum[axis];
+		if (m->min[axis] < r->min[axis])
+			r->min[axis] = m->min[axis];
+		if (m->max[axis] > r->max[axis])
+			r->max[axis] = m->max[axis];
+		for (end = 0; end < 2; end++) {
+			if (!r->saturated[axis][end] && m->saturated[axis][end])
+				r->bad_acc[axis][end] = (int)r->n + m->bad_acc[axis][end];
+			r->saturated[axis][end] += m->saturated[axis][end];
+		}
+	}
+	r->tmps_sum += m->tmps_sum;
+	if (m->tmps_min < r->tmps_min)
+		r->tmps_min = m->tmps_min;
+	if (m->tmps_max > r->tmps_max)
+		r->tmps_max = m->tmps_max;
+	r->n += m->n;
+}
+
 /*
  * Collect N samples at a stable temperature (Note 2, Note 4b): a run whose
  * TMPS codes spread more than FTEST_TMPS_SPREAD_MAX is taken again, until
- * the stability timeout.
+ * the stability timeout. @pre (may be NULL): samples already taken in the
+ * same posture with the same DAC (the pilot of Note 2), which the first try
+ * starts with; it takes max(N, pre->n) samples.
  */
 static int level_collect_stable(struct ftest_ctx *x, uint32_t n,
-				const char *step, struct level_run *r)
+				const char *step, const struct level_run *pre,
+				struct level_run *r)
 {
 	uint64_t give_up = x->ops->now_ns(x) +
 			   x->o->stable_timeout_ms * NS_PER_MS;
+	struct level_run more;
 	int ret;
 
 	for (;;) {
-		ret = x->ops->level_collect(x, n, step, r);
+		if (pre) {
+			*r = *pre;
+			ret = n > pre->n ?
+			      x->ops->level_collect(x, n - pre->n, step, &more) : 0;
+			if (!ret && n > pre->n)
+				level_run_merge(r, &more);
+			pre = NULL;	/* a retry starts afresh */
+		} else {
+			ret = x->ops->level_collect(x, n, step, r);
+		}
 		if (ret)
 			return ret;
 		if (r->tmps_max - r->tmps_min <= FTEST_TMPS_SPREAD_MAX ||
@@ -404,13 +455,19 @@ static const char *const pass2_steps[] = {
 
 /*
  * Note 2: N >= n * (sigma / Sigma)^2, with sigma measured on a pilot run of
- * single samples (n = 1), the noisiest axis deciding.
+ * single samples (n = 1), the noisiest axis deciding. The pilot's sigma-hat
+ * is an estimate: N is taken for its one-sided 95 % upper confidence bound,
+ * sigma-hat * sqrt((m - 1) / chi2_0.05(m - 1)) for m pilot samples, so that
+ * the level mean's standard error sigma / sqrt(N) is within E in at least
+ * 95 % of runs (docs/DECISIONS.md). @pilot keeps the samples for the first
+ * level run, which starts with them.
  */
-static int choose_samples(struct ftest_ctx *x, uint32_t *n)
+static int choose_samples(struct ftest_ctx *x, uint32_t *n,
+			  struct level_run *pilot)
 {
-	struct level_run pilot;
-	double worst = 0.0;
+	double worst = 0.0, upper;
 	char limits[64];
+	bool ok;
 	int axis, ret;
 
 	if (!x->o->permissible_error_q16) {
@@ -418,30 +475,35 @@ static int choose_samples(struct ftest_ctx *x, uint32_t *n)
 		return 0;
 	}
 
-	ret = x->ops->level_collect(x, FTEST_PILOT_SAMPLES, "3-3", &pilot);
+	ret = x->ops->level_collect(x, FTEST_PILOT_SAMPLES, "3-3", pilot);
 	if (ret)
 		return ret;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		double mean = (double)pilot.sum[axis] / pilot.n;
-		double var = ((double)pilot.sq_sum[axis] - mean * pilot.sum[axis]) /
-			     (pilot.n - 1);
+		double mean = (double)pilot->sum[axis] / pilot->n;
+		double var = ((double)pilot->sq_sum[axis] - mean * pilot->sum[axis]) /
+			     (pilot->n - 1);
 
 		if (var > worst)
 			worst = var;
 	}
 	worst = sqrt(worst);
-	*n = as9888_samples_needed(1, (uint32_t)lround(worst * AS9888_Q16_ONE),
+	upper = worst * sqrt((FTEST_PILOT_SAMPLES - 1) / FTEST_PILOT_CHI2_05);
+	x->res->pilot_sigma = worst;
+	x->res->pilot_sigma_upper = upper;
+	*n = as9888_samples_needed(1, (uint32_t)lround(upper * AS9888_Q16_ONE),
 				   x->o->permissible_error_q16);
-	snprintf(limits, sizeof(limits), "N <= %d", AS9888_SAMPLES_MAX);
-	if (!ftest_judge(x, "3-3.N", "averaging count from Note 2", *n <= AS9888_SAMPLES_MAX,
-			 limits, "sigma %.3f LSB, Sigma %.3f LSB: N %u%s", worst,
-			 (double)x->o->permissible_error_q16 / AS9888_Q16_ONE, *n,
-			 *n > AS9888_SAMPLES_MAX ? " (environment too noisy)" : ""))
-		return -ERANGE;
 	if (*n < x->o->samples)
 		*n = x->o->samples;
+	ok = *n <= AS9888_SAMPLES_MAX;
+	snprintf(limits, sizeof(limits), "N <= %d", AS9888_SAMPLES_MAX);
+	ftest_judge(x, "3-3.N", "averaging count from Note 2", ok, limits,
+		    "sigma %.3f LSB (95 %% upper bound %.3f), E %.3f LSB: N %u%s",
+		    worst, upper,
+		    (double)x->o->permissible_error_q16 / AS9888_Q16_ONE, *n,
+		    ok ? "" : " (environment too noisy)");
+	ftest_value(x, *n, x->o->samples, AS9888_SAMPLES_MAX, "samples");
 
-	return 0;
+	return ok ? 0 : -ERANGE;
 }
 
 static void means(const struct level_run *r, int32_t mean_q16[AS9888_AXES])
@@ -583,6 +645,7 @@ static void store_level(struct ftest_result *res,
  * their mean, temperature and the sensitivity there.
  */
 static int level_pass(struct ftest_ctx *x, uint32_t n, const char *step,
+		      const struct level_run *pre,
 		      const char *const steps[], int32_t mean[AS9888_AXES],
 		      int32_t *t_l, int32_t st[AS9888_AXES])
 {
@@ -590,7 +653,7 @@ static int level_pass(struct ftest_ctx *x, uint32_t n, const char *step,
 	struct level_run run;
 	int ret;
 
-	ret = level_collect_stable(x, n, step, &run);
+	ret = level_collect_stable(x, n, step, pre, &run);
 	if (ret || x->stop)
 		return ret;
 	level_judge(x, &run, steps);
@@ -617,6 +680,7 @@ static int step3(struct ftest_ctx *x)
 	int32_t mean[AS9888_AXES], st[AS9888_AXES], t_l;
 	int8_t g[AS9888_AXES];
 	uint8_t dac[AS9888_AXES];
+	struct level_run pilot;
 	uint32_t n;
 	int axis, ret;
 
@@ -624,11 +688,13 @@ static int step3(struct ftest_ctx *x)
 	if (ret || x->stop)
 		return ret;
 
-	ret = choose_samples(x, &n);
+	ret = choose_samples(x, &n, &pilot);
 	if (ret || x->stop)
 		return ret;
 
-	ret = level_pass(x, n, "3-3", pass1_steps, mean, &t_l, st);
+	/* the pilot was taken in this posture with these DAC values: reused */
+	ret = level_pass(x, n, "3-3", x->o->permissible_error_q16 ? &pilot : NULL,
+			 pass1_steps, mean, &t_l, st);
 	if (ret || x->stop)
 		return ret;
 	ret = posture(x, mean, st, g);
@@ -646,7 +712,7 @@ static int step3(struct ftest_ctx *x)
 		return ret;
 
 	/* 3-27..3-47: again with DACopt */
-	ret = level_pass(x, n, "3-28", pass2_steps, mean, &t_l, st);
+	ret = level_pass(x, n, "3-28", NULL, pass2_steps, mean, &t_l, st);
 	if (ret || x->stop)
 		return ret;
 

@@ -17,6 +17,13 @@
 
 /* Pilot samples taken to measure the noise for --permissible-error */
 #define FTEST_PILOT_SAMPLES		32
+/*
+ * The 5 % quantile of the chi-square distribution with
+ * FTEST_PILOT_SAMPLES - 1 = 31 degrees of freedom: (m - 1) s^2 / sigma^2
+ * is below it with probability 0.05, so sigma <= s * sqrt(31 / 19.281)
+ * = 1.268 s with probability 0.95
+ */
+#define FTEST_PILOT_CHI2_05		19.281
 /* Largest TMPS spread (codes) within one averaging run: 0.625 degC */
 #define FTEST_TMPS_SPREAD_MAX		1
 #define FTEST_STABLE_TIMEOUT_MS_DEFAULT	10000
@@ -76,6 +83,9 @@ void ftest_opts_default(struct ftest_opts *o);
  * @level_g:	its gravity direction
  * @backend:	the backend the test ran on ("sim", "raw", "iio"), set by the
  *		caller (NULL: not said)
+ * @pilot_sigma: with a permissible error: the pilot's sigma-hat of the
+ *		noisiest axis, LSB
+ * @pilot_sigma_upper: its 95 % upper confidence bound, which chose N
  * @opts:	the options the test ran with
  * @started:	when it started, seconds since the epoch (UTC)
  */
@@ -93,6 +103,8 @@ struct ftest_result {
 	int32_t level_t_mdegc;
 	int8_t level_g[AS9888_AXES];
 	const char *backend;
+	double pilot_sigma;
+	double pilot_sigma_upper;
 	struct ftest_opts opts;
 	int64_t started;
 };

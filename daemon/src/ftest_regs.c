@@ -190,7 +190,7 @@ static int measure(struct ftest_ctx *x, uint8_t ms, bool men,
 	if (int1 && how == CHIP_WAIT_DRDY)
 		c->use_int1 = false;
 
-	ret = chip_read_sample(c, s);
+	ret = men ? chip_read_sample(c, s) : chip_read_accel_sample(c, s);
 	if (ret)
 		return ftest_io_failed(x, step, "sample read", ret);
 
@@ -210,6 +210,7 @@ static int regs_step2(struct ftest_ctx *x)
 
 	/* 2-1: DR1EN, and DR2EN so that INT2 can be checked too (D11) */
 	ret = transport_write_reg(t, AS9888_REG_INT1EN, AS9888_INTEN_DR_MSK);
+	c->int1_dr = !ret;
 	if (!ret)
 		ret = transport_write_reg(t, AS9888_REG_INT2EN,
 					  AS9888_INTEN_DR_MSK);
@@ -327,20 +328,32 @@ static int regs_level_setup(struct ftest_ctx *x)
 	struct chip *c = x->dev;
 	int ret;
 
-	ret = transport_write_reg(c->t, AS9888_REG_INT1EN, AS9888_INTEN_DR_MSK);
-	if (!ret)
-		ret = transport_write_reg(c->t, AS9888_REG_SLCT2,
-					  x->o->lpf ? AS9888_SLCT2_ALPF_MSK : 0);
+	/* DR1EN stays from step 2-1; without step 2 (level only) it is set here */
+	if (!c->int1_dr) {
+		ret = transport_write_reg(c->t, AS9888_REG_INT1EN, AS9888_INTEN_DR_MSK);
+		if (ret)
+			return ftest_io_failed(x, "3-1", "INT1EN set-up", ret);
+		c->int1_dr = true;
+	}
+	ret = transport_write_reg(c->t, AS9888_REG_SLCT2,
+				  x->o->lpf ? AS9888_SLCT2_ALPF_MSK : 0);
 	if (ret)
 		return ftest_io_failed(x, "3-1", "SLCT2 set-up", ret);
 
 	return 0;
 }
 
-/* Leave the chip idle whatever happened; a failure here changes nothing */
+/*
+ * Leave the chip idle whatever happened; a failure here changes nothing.
+ * A chip known to be in power-down (a single measurement ends there) needs
+ * no MS = 0.
+ */
 static void regs_finish(struct ftest_ctx *x)
 {
-	chip_set_mode(x->dev, AS9888_MS_POWER_DOWN);
+	struct chip *c = x->dev;
+
+	if (!c->powered_down)
+		chip_set_mode(c, AS9888_MS_POWER_DOWN);
 }
 
 static uint64_t regs_now_ns(struct ftest_ctx *x)

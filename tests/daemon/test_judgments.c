@@ -9,9 +9,11 @@
  * AS9888_REPORT_DIR set, each run's JSON report is written there (for
  * tests/daemon/report.sh, which validates them against the schema).
  *
- * Sample bursts (one 16-byte read of ST1..ST2) are numbered from 0: burst 0
- * is the magnetometer measurement of step 2, burst 1 the self-test, bursts
- * 2..11 the first level run (N = 10), bursts 12..21 the second.
+ * Sample bursts are numbered from 0: burst 0 is the magnetometer
+ * measurement of step 2, burst 1 the self-test (each one 16-byte read of
+ * ST1..ST2), bursts 2..11 the first level run (N = 10), bursts 12..21 the
+ * second (each a read of ST1, then one of TMPS..ST2: the magnetometer is
+ * off in step 3).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -53,6 +55,11 @@ struct tamper {
 	const struct tamper_rule *rule;
 	int bursts;
 	int covering_reads;
+	/* what the test sent: INT1EN writes, reads of magnetometer data, the last write */
+	int int1en_writes;
+	int mag_reads;
+	int transfers;
+	uint8_t last_reg, last_val;
 };
 
 static struct tamper *to_tamper(struct transport *t)
@@ -71,14 +78,22 @@ static int tamper_read(struct transport *t, uint8_t reg, uint8_t *buf,
 	ret = transport_read(x->inner, reg, buf, len);
 	if (ret)
 		return ret;
+	x->transfers++;
+	if (reg <= AS9888_REG_HXL + 5 && reg + len > AS9888_REG_HXL)
+		x->mag_reads++;
 
-	if (reg == AS9888_REG_ST1 && len == AS9888_SAMPLE_LEN) {
-		hit = r->burst && x->bursts >= r->first &&
-		      (r->last == ANY || x->bursts <= r->last);
-		x->bursts++;
-	} else if (!r->burst && r->reg >= reg && r->reg < reg + len) {
-		hit = ++x->covering_reads == r->nth;
+	if (r->reg >= reg && r->reg < reg + len) {
+		if (r->burst)
+			hit = (reg == AS9888_REG_ST1 || reg == AS9888_REG_TMPS) &&
+			      x->bursts >= r->first &&
+			      (r->last == ANY || x->bursts <= r->last);
+		else
+			hit = ++x->covering_reads == r->nth;
 	}
+	/* a sample's last read ends its burst */
+	if ((reg == AS9888_REG_ST1 && len == AS9888_SAMPLE_LEN) ||
+	    (reg == AS9888_REG_TMPS && reg + len == AS9888_REG_ST2 + 1))
+		x->bursts++;
 	if (hit) {
 		buf[r->reg - reg] = (uint8_t)r->value;
 		if (r->wide)
@@ -91,7 +106,13 @@ static int tamper_read(struct transport *t, uint8_t reg, uint8_t *buf,
 static int tamper_write(struct transport *t, uint8_t reg, const uint8_t *buf,
 			size_t len)
 {
-	return transport_write(to_tamper(t)->inner, reg, buf, len);
+	struct tamper *x = to_tamper(t);
+
+	x->transfers++;
+	x->int1en_writes += reg == AS9888_REG_INT1EN;
+	x->last_reg = reg;
+	x->last_val = buf[len - 1];
+	return transport_write(x->inner, reg, buf, len);
 }
 
 static int tamper_set_rstn(struct transport *t, bool level)
@@ -224,6 +245,8 @@ static const struct judgment_case cases[] = {
 };
 
 /* Run the factory test on a noiseless unit behind a tamperer with @rule */
+static struct tamper last_run;
+
 static int run_tampered(const struct tamper_rule *rule, bool keep_going,
 			struct ftest_result *res)
 {
@@ -245,6 +268,7 @@ static int run_tampered(const struct tamper_rule *rule, bool keep_going,
 	ftest_run(&x.base, &o, res);
 	res->backend = "sim";
 	transport_destroy(&x.base);
+	last_run = x;
 
 	return x.bursts;
 }
@@ -331,6 +355,19 @@ static void untampered_unit_passes(void **state)
 	assert_null(report_first_failure(&res.report));
 	/* the burst numbering the cases rely on */
 	assert_int_equal(bursts, PASS2 + 10);
+	/*
+	 * No redundant transfer: INT1EN written for the RSTN check and in 2-1
+	 * only (not again in 3-1), magnetometer data read in step 2's two
+	 * bursts only (step 3 skips its 6 bytes), and no MS = 0 at the end
+	 * (the last single measurement left the chip in power-down); the
+	 * last write is the second level run's last MS = single
+	 */
+	assert_int_equal(last_run.int1en_writes, 2);
+	assert_int_equal(last_run.mag_reads, 2);
+	assert_int_equal(last_run.last_reg, AS9888_REG_MS);
+	assert_int_equal(last_run.last_val, AS9888_MS_SINGLE);
+	print_message("%d bus transfers in a passing run at N = 10\n",
+		      last_run.transfers);
 	ftest_result_free(&res);
 }
 
