@@ -36,6 +36,7 @@ enum {
 	OPT_SOCKET_GROUP,
 	OPT_LOCK_TIMEOUT,
 	OPT_STATE_GROUP,
+	OPT_JUNIT,
 };
 
 static const struct option long_opts[] = {
@@ -65,6 +66,7 @@ static const struct option long_opts[] = {
 	{ "socket-group", required_argument, NULL, OPT_SOCKET_GROUP },
 	{ "lock-timeout", required_argument, NULL, OPT_LOCK_TIMEOUT },
 	{ "state-group", required_argument, NULL, OPT_STATE_GROUP },
+	{ "junit", required_argument, NULL, OPT_JUNIT },
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -417,6 +419,11 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 			break;
 		case OPT_KEEP_GOING:
 			o->ftest.keep_going = true;
+			break;
+		case OPT_JUNIT:
+			if (!*optarg)
+				return bad(err, errlen, "--junit needs a path");
+			o->junit_path = optarg;
 			break;
 		case OPT_TEMPERATURE:
 			if (cli_parse_fixed(optarg, 3, -30000, 85000, &v))

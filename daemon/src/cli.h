@@ -67,6 +67,7 @@ enum cli_command {
  * @state_group:	group trusted to write the record's files (NULL: none)
  * @backend_auto:	@backend was picked, not given by --backend
  * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
+ * @junit_path:		factory-test: also write the report as JUnit XML there
  * @ftest:		factory-test options
  */
 struct cli_opts {
@@ -89,6 +90,7 @@ struct cli_opts {
 	const char *state_group;
 	bool backend_auto;
 	char backend_why[CLI_BACKEND_WHY_LEN];
+	const char *junit_path;
 	struct ftest_opts ftest;
 };
 

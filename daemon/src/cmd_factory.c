@@ -14,19 +14,52 @@
 #include "session.h"
 #include "show.h"
 
+/* --junit FILE: opened before the test, so that a bad path costs no unit */
+static FILE *open_junit(const char *path)
+{
+	FILE *f = fopen(path, "we");
+
+	if (!f)
+		fprintf(stderr, "as9888-calibd: cannot write %s: %s; nothing done\n",
+			path, strerror(errno));
+	return f;
+}
+
+/* The JUnit report into @f, closed; false (said) when it could not be written */
+static bool write_junit(FILE *f, const char *path, const struct ftest_result *res)
+{
+	bool ok;
+
+	ftest_print_junit(f, res);
+	ok = !ferror(f);
+	ok = !fclose(f) && ok;
+	if (!ok)
+		fprintf(stderr, "as9888-calibd: cannot write %s\n", path);
+
+	return ok;
+}
+
 int cmd_factory_test(const struct cli_opts *o)
 {
 	struct ftest_result res = { 0 };
-	bool stored = false;
+	bool stored = false, junit_ok = true;
+	FILE *junit = NULL;
 	int ret;
 
-	if (session_lock(o->record_path, o->lock_timeout_s) < 0 ||
-	    session_run_test(o, &o->ftest, &res))
+	if (o->junit_path && !(junit = open_junit(o->junit_path)))
 		return EXIT_FAILURE;
+	if (session_lock(o->record_path, o->lock_timeout_s) < 0 ||
+	    session_run_test(o, &o->ftest, &res)) {
+		if (junit)
+			fclose(junit);
+		return EXIT_FAILURE;
+	}
 
 	if (res.have_calibration && !report_first_failure(&res.report))
 		stored = session_store_result(o, &res, false);
 
+	if (junit)
+		junit_ok = write_junit(junit, o->junit_path, &res);
 	if (o->json) {
 		ftest_print_json(stdout, &res, o->record_path, stored);
 	} else {
@@ -34,7 +67,7 @@ int cmd_factory_test(const struct cli_opts *o)
 		if (stored)
 			printf("Record written to %s\n", o->record_path);
 	}
-	ret = report_first_failure(&res.report) || res.report.oom ?
+	ret = report_first_failure(&res.report) || res.report.oom || !junit_ok ?
 	      EXIT_FAILURE : EXIT_SUCCESS;
 	ftest_result_free(&res);
 

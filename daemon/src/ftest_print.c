@@ -159,3 +159,95 @@ void ftest_print_text(FILE *out, const struct ftest_result *res)
 		fprintf(out, "\nResult: PASS\n");
 }
 
+
+/* @s as XML character data or attribute value */
+static void xml_text(FILE *out, const char *s)
+{
+	for (; s && *s; s++) {
+		unsigned char c = (unsigned char)*s;
+
+		switch (c) {
+		case '<':
+			fputs("&lt;", out);
+			break;
+		case '>':
+			fputs("&gt;", out);
+			break;
+		case '&':
+			fputs("&amp;", out);
+			break;
+		case '"':
+			fputs("&quot;", out);
+			break;
+		default:
+			if (c < 0x20 && c != '\n' && c != '\t')
+				fputc('?', out);
+			else
+				fputc(c, out);
+		}
+	}
+}
+
+static void xml_property(FILE *out, const char *name, const char *value)
+{
+	fprintf(out, "      <property name=\"%s\" value=\"", name);
+	xml_text(out, value ? value : "");
+	fputs("\"/>\n", out);
+}
+
+void ftest_print_junit(FILE *out, const struct ftest_result *res)
+{
+	const struct report *r = &res->report;
+	size_t i, failures = 0, skipped = 0;
+	char chip[20] = "", stamp[32] = "";
+	time_t t = (time_t)res->started;
+	struct tm tm;
+
+	for (i = 0; i < r->count; i++) {
+		failures += r->items[i].result == JUDGMENT_FAIL;
+		skipped += r->items[i].result == JUDGMENT_SKIP;
+	}
+	if (res->have_eeprom)
+		snprintf(chip, sizeof(chip), "%016llx",
+			 (unsigned long long)record_fingerprint(res->ee.raw));
+	if (res->started && gmtime_r(&t, &tm))
+		strftime(stamp, sizeof(stamp), "%Y-%m-%dT%H:%M:%S", &tm);
+
+	fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", out);
+	fprintf(out, "<testsuites name=\"as9888-calibd factory-test\" tests=\"%zu\" failures=\"%zu\" skipped=\"%zu\" errors=\"0\" time=\"%.6f\">\n",
+		r->count, failures, skipped, res->duration_ns / 1e9);
+	fprintf(out, "  <testsuite name=\"%s\" tests=\"%zu\" failures=\"%zu\" skipped=\"%zu\" errors=\"0\" time=\"%.6f\" timestamp=\"%s\">\n",
+		FTEST_REPORT_SCHEMA, r->count, failures, skipped,
+		res->duration_ns / 1e9, stamp);
+	fputs("    <properties>\n", out);
+	xml_property(out, "tool_version", AS9888_VERSION);
+	xml_property(out, "backend", res->backend);
+	xml_property(out, "chip", chip);
+	fputs("    </properties>\n", out);
+	for (i = 0; i < r->count; i++) {
+		const struct judgment *j = &r->items[i];
+
+		fputs("    <testcase classname=\"step ", out);
+		xml_text(out, j->step);
+		fputs("\" name=\"", out);
+		xml_text(out, j->id);
+		fputc(' ', out);
+		xml_text(out, j->name);
+		fputs("\" time=\"0\">", out);
+		if (j->result != JUDGMENT_PASS) {
+			fputs(j->result == JUDGMENT_FAIL ? "\n      <failure message=\"" :
+			      "\n      <skipped message=\"", out);
+			xml_text(out, j->measured);
+			if (j->limits[0]) {
+				fputs(" (limits: ", out);
+				xml_text(out, j->limits);
+				fputc(')', out);
+			}
+			fputs("\"/>\n    ", out);
+		}
+		fputs("<system-out>", out);
+		xml_text(out, j->measured);
+		fputs("</system-out></testcase>\n", out);
+	}
+	fputs("  </testsuite>\n</testsuites>\n", out);
+}

@@ -23,5 +23,12 @@
 void ftest_print_json(FILE *out, const struct ftest_result *res,
 		      const char *record_path, bool stored);
 void ftest_print_text(FILE *out, const struct ftest_result *res);
+/*
+ * The same judgments as JUnit XML for line dashboards and CI: one
+ * testsuite, one testcase per judgment (name: its ID and what it judges,
+ * classname: the step), failure or skipped as judged; backend, chip and
+ * versions as properties
+ */
+void ftest_print_junit(FILE *out, const struct ftest_result *res);
 
 #endif

@@ -73,6 +73,7 @@ static const char usage_text[] =
 "  --stable-timeout MS  how long to wait for a stable temperature\n"
 "                       (default 10000)\n"
 "  --keep-going         do not stop at the first failed judgment\n"
+"  --junit FILE         also write the judgments as JUnit XML to FILE\n"
 "\n"
 "recalibrate and check take --samples, --fluctuation (default 8), --lpf,\n"
 "--gravity, --stable-timeout and --json as well.\n"

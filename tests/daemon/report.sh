@@ -65,6 +65,37 @@ check "every fault's report says fail" python3 -c "
 import json, sys
 sys.exit(any(json.load(open(f))['result'] != 'fail' for f in sys.argv[1:]))" "${files[@]}"
 
+# JUnit XML (--junit FILE): the same judgments, for dashboards and CI
+report junit-pass "seed = 3" --junit "$work/pass.xml"
+report junit-fail "fault = saturate_z" --keep-going --junit "$work/fail.xml"
+junit_matches() {
+	python3 - "$1" "$2" <<'PY'
+import json, sys
+import xml.etree.ElementTree as ET
+x, j = ET.parse(sys.argv[1]).getroot(), json.load(open(sys.argv[2]))
+suite = x.find("testsuite")
+cases = suite.findall("testcase")
+failed = [c for c in cases if c.find("failure") is not None]
+skipped = [c for c in cases if c.find("skipped") is not None]
+want_failed = [s["id"] for s in j["steps"] if s["result"] == "fail"]
+props = {p.get("name"): p.get("value") for p in suite.find("properties")}
+ok = (len(cases) == len(j["steps"]) == int(suite.get("tests")) == int(x.get("tests")) and
+      len(failed) == int(suite.get("failures")) and len(skipped) == int(suite.get("skipped")) and
+      [c.get("name").split()[0] for c in failed] == want_failed and
+      [c.get("name").split()[0] for c in cases] == [s["id"] for s in j["steps"]] and
+      props["backend"] == j["backend"] and props["chip"] == j["chip"]["fingerprint"])
+sys.exit(0 if ok else 1)
+PY
+}
+check "--junit: well-formed JUnit XML, one testcase per judgment, none failed on a pass" \
+	eval 'junit_matches "$work/pass.xml" "$work/junit-pass.json" && grep -q "failures=\"0\"" "$work/pass.xml"'
+check "--junit: a failing run's failures are the JSON report's, in order (3-12 first)" \
+	eval 'junit_matches "$work/fail.xml" "$work/junit-fail.json" && grep -q "<testcase classname=\"step 3-12\" name=\"3-12 Z below 2047 on every sample\" time=\"0\">" "$work/fail.xml"'
+"$calibd" factory-test $vt --record "$work/rec-x" --junit "$work/no/such/dir/x.xml" >"$work/junit.out" 2>"$work/junit.err"
+rc=$?
+check "--junit to a path that cannot be written: exit 1 before the test, said, no record" \
+	eval '[ $rc -eq 1 ] && grep -q "cannot write" "$work/junit.err" && [ ! -s "$work/junit.out" ] && [ ! -e "$work/rec-x" ]'
+
 mkdir -p "$work/tampered"
 AS9888_REPORT_DIR=$work/tampered "$judgments" >"$work/judgments.log" 2>&1
 check "test_judgments ran and left a report per tampered judgment" \
