@@ -172,8 +172,11 @@ static int check_lock(const char *lock, int fd, char *err, size_t errlen)
 	struct stat st;
 
 	if (fstat(fd, &st)) {
-		snprintf(err, errlen, "cannot examine lock %s: %s", lock, strerror(errno));
-		return -errno;
+		int ret = -errno;
+
+		snprintf(err, errlen, "cannot examine lock %.256s: %s", lock,
+			 strerror(-ret));
+		return ret;
 	}
 
 	return storage_trust_file(&trust, lock, &st, err, errlen);
