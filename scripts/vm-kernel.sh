@@ -25,6 +25,8 @@ set -euo pipefail
 . "$(dirname "$0")/kernel-common.sh"
 
 select_kernels "$@"
+# the lock of vm-run.sh, unless it runs us
+[ -n "${AS9888_VM_LOCKED:-}" ] || cache_lock vm
 
 VM_DIR="$AS9888_CACHE/vm"
 CFG_DIR="$AS9888_REPO/tests/vm/config"

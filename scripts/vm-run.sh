@@ -7,15 +7,23 @@
 # debug kernel, the driver and the test adapter (scripts/vm-kernel.sh) and
 # as9888-calibd linked statically, packs an initramfs (busybox-static, the
 # modules, the daemon, tests/vm/guest/) and boots it in QEMU (TCG) under a
-# timeout. The guest prints TAP and an end marker, then reboots.
+# stall watchdog. The guest prints TAP and an end marker, then reboots.
 #
-# A kernel fails when a test fails, when the end marker is missing (hang,
-# panic) or on any kernel splat in the serial log (BUG, WARNING, KASAN,
-# lockdep, Oops, panic, kmemleak leak, hung task). Prints
-# "<k>: N passed, N failed" per kernel; exit status 0 only when all pass.
+# No total time budget: a busy machine makes every test slower. Instead a
+# guest that prints no TAP line (ok, not ok, or a "# " diagnostic) for
+# AS9888_VM_STALL seconds is stopped, and the test it stalled in is named.
+# AS9888_VM_TIMEOUT is only a last resort against a runaway guest.
+#
+# A kernel fails when a test fails, when the guest stalls, when the end
+# marker is missing (hang, panic) or on any kernel splat in the serial log
+# (BUG, WARNING, KASAN, lockdep, Oops, panic, kmemleak leak, hung task).
+# Prints "<k>: N passed, N failed" per kernel; exit status 0 only when all
+# pass.
 #
 # Everything goes to $AS9888_CACHE/vm/ (logs: $AS9888_CACHE/logs/vm-run-<k>.log).
-# Environment: AS9888_CACHE, AS9888_JOBS, AS9888_VM_TIMEOUT (s, default 600),
+# One run at a time per cache (lock $AS9888_CACHE/.vm.lock: a second run
+# waits). Environment: AS9888_CACHE, AS9888_JOBS, AS9888_VM_STALL (s without
+# a TAP line, default 300), AS9888_VM_TIMEOUT (s in all, default 7200),
 # AS9888_VM_ONLY (test files to run, e.g. "10-probe 90-spi"; default all).
 set -euo pipefail
 
@@ -23,10 +31,16 @@ set -euo pipefail
 . "$(dirname "$0")/kernel-common.sh"
 
 select_kernels "$@"
+# One bench at a time per cache: the kernels, modules, initramfs and logs
+# under $AS9888_CACHE/vm are shared (vm-kernel.sh below runs under this
+# lock; AS9888_VM_LOCKED=1 says that the caller holds it)
+[ -n "${AS9888_VM_LOCKED:-}" ] || cache_lock vm
+export AS9888_VM_LOCKED=1
 
 VM_DIR="$AS9888_CACHE/vm"
 GUEST="$AS9888_REPO/tests/vm/guest"
-TIMEOUT="${AS9888_VM_TIMEOUT:-600}"
+TIMEOUT="${AS9888_VM_TIMEOUT:-7200}"
+STALL="${AS9888_VM_STALL:-300}"
 mkdir -p "$VM_DIR" "$LOG_DIR"
 T_START=$(now)
 
@@ -106,15 +120,35 @@ RESULTS=()
 FAILED=0
 run_one() {
 	local k="$1"
-	local log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail splat
+	local log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail splat qpid
+	local lines=0 n quiet=0 stalled=""
 	pack_initramfs "$k"
 	t=$(now)
 	log "$k: booting $VM_DIR/build-$k/arch/x86/boot/bzImage (log: $log)"
-	timeout --foreground -k 10 "$TIMEOUT" qemu-system-x86_64 -accel tcg -m 1G \
+	timeout -k 10 "$TIMEOUT" qemu-system-x86_64 -accel tcg -m 1G \
 		-nographic -no-reboot -monitor none -serial stdio \
 		-kernel "$VM_DIR/build-$k/arch/x86/boot/bzImage" -initrd "$INITRD" \
 		-append "console=ttyS0 loglevel=5 oops=panic panic_on_warn=1 panic=-1 kmemleak=on" \
-		</dev/null >"$log" 2>&1 || rc=$?
+		</dev/null >"$log" 2>&1 &
+	qpid=$!
+	# the stall watchdog: TAP lines (and diagnostics) must keep coming
+	while kill -0 "$qpid" 2>/dev/null; do
+		sleep 5
+		n=$(grep -cE '^(ok |not ok |# )' "$log" || true)
+		if [ "$n" -ne "$lines" ]; then
+			lines=$n
+			quiet=0
+			continue
+		fi
+		quiet=$((quiet + 5))
+		if [ "$quiet" -ge "$STALL" ]; then
+			stalled=$(grep -E '^# --- ' "$log" | tail -n 1 | tr -d '\r' | sed 's/^# --- //')
+			stalled=${stalled:-the boot, before the first test}
+			kill "$qpid" 2>/dev/null || true
+			break
+		fi
+	done
+	wait "$qpid" || rc=$?
 	tr -d '\r' <"$log" >"$log.tmp" && mv "$log.tmp" "$log"
 	pass=$(grep -c '^ok ' "$log" || true)
 	fail=$(grep -c '^not ok ' "$log" || true)
@@ -126,9 +160,13 @@ run_one() {
 		fail=$((fail + 1))
 		warn "$k: TAP plan '${plan:-none}' does not match $pass passed + $fail failed"
 	fi
-	if ! grep -q '^AS9888-VM-END' "$log"; then
+	if [ -n "$stalled" ]; then
 		fail=$((fail + 1))
-		warn "$k: no end marker (qemu exit $rc; timeout is $TIMEOUT s): see $log"
+		warn "$k: stalled in $stalled: no TAP line for $STALL s (stopped at $(since "$t")); last lines of $log:"
+		grep -E '^(ok |not ok |# )' "$log" | tail -n 5 >&2
+	elif ! grep -q '^AS9888-VM-END' "$log"; then
+		fail=$((fail + 1))
+		warn "$k: no end marker (qemu exit $rc; last-resort timeout $TIMEOUT s): see $log"
 		tail -n 30 "$log" >&2
 	fi
 	splat=$(grep -E "$SPLAT_RE" "$log" || true)

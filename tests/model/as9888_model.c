@@ -419,6 +419,35 @@ void as9888_model_set_power(struct as9888_model *m, u64 now_ns, bool on)
 	m->mode_since_ns = m->now_ns;
 }
 
+void as9888_model_set_temperature(struct as9888_model *m, u64 now_ns,
+				  s32 t_mdegc)
+{
+	as9888_model_advance(m, now_ns);
+	m->unit.temperature_mdegc = t_mdegc;
+	sanitize_unit(&m->unit);
+	/* the drift counts from this instant */
+	m->init_ns = m->now_ns;
+}
+
+void as9888_model_set_up(struct as9888_model *m, u64 now_ns,
+			 const s32 up[AS9888_UNIT_AXES])
+{
+	int i;
+
+	as9888_model_advance(m, now_ns);
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		m->unit.up[i] = up[i];
+	sanitize_unit(&m->unit);
+}
+
+void as9888_model_set_noise(struct as9888_model *m, u64 now_ns,
+			    u32 noise_mlsb)
+{
+	as9888_model_advance(m, now_ns);
+	m->unit.noise_mlsb = noise_mlsb;
+	sanitize_unit(&m->unit);
+}
+
 void as9888_model_set_rstn(struct as9888_model *m, u64 now_ns, bool level)
 {
 	as9888_model_advance(m, now_ns);

@@ -224,6 +224,23 @@ int as9888_model_write(struct as9888_model *m, u64 now_ns, u8 reg,
 /* Switch the supply (true = on); on again starts t_BOOT. */
 void as9888_model_set_power(struct as9888_model *m, u64 now_ns, bool on);
 
+/*
+ * Live changes of the unit's environment, as a test bench changes the
+ * room around a chip: registers, a running measurement, the noise
+ * generator and the counters stay. Events due before @now_ns happen
+ * first with the old value; every measurement that completes from @now_ns
+ * on uses the new one. Values are clamped as in as9888_model_init().
+ */
+/* Die temperature at @now_ns; a temperature_drift continues from there. */
+void as9888_model_set_temperature(struct as9888_model *m, u64 now_ns,
+				  s32 t_mdegc);
+/* Posture: the sensor-frame direction pointing up, normalised to 1e6. */
+void as9888_model_set_up(struct as9888_model *m, u64 now_ns,
+			 const s32 up[AS9888_UNIT_AXES]);
+/* Accelerometer noise, milli-LSB rms with ALPF = 0. */
+void as9888_model_set_noise(struct as9888_model *m, u64 now_ns,
+			    u32 noise_mlsb);
+
 /* Drive RSTN (true = high). */
 void as9888_model_set_rstn(struct as9888_model *m, u64 now_ns, bool level);
 

@@ -1654,6 +1654,128 @@ static void test_noise_zero(void **state)
 	}
 }
 
+/* ---- live environment (the test adapter's debugfs knobs) ---- */
+
+/* Every axis of @s against the reference for unit @u at @t degC */
+static void expect_accel(const struct as9888_unit *u, const struct sample *s,
+			 double t)
+{
+	u8 trim[10];
+	int i;
+
+	rdn(AS9888_REG_REF1, trim, 10);
+	for (i = 0; i < 3; i++)
+		expect_raw(ref_accel(u, i, trim[4 + i], trim[7 + i], t),
+			   s->a[i], -2048, 2047);
+}
+
+static void test_live_temperature(void **state)
+{
+	struct as9888_unit u = unit_default();
+	struct as9888_model_stats st0;
+	struct sample s;
+	u8 trim[10], trim1[10];
+
+	u.noise_mlsb = 0;
+	ready(&u);
+	measure(0, &s);
+	assert_int_equal(s.tmps, 136);
+	rdn(AS9888_REG_REF1, trim, 10);
+	st0 = *as9888_model_stats(&M);
+
+	as9888_model_set_temperature(&M, T, 70000);
+	measure(0, &s);
+	assert_int_equal(s.tmps, 64);
+	u.temperature_mdegc = 70000;
+	expect_accel(&u, &s, 70);
+	/* the chip was not reset: trim kept, counters carry on */
+	rdn(AS9888_REG_REF1, trim1, 10);
+	assert_memory_equal(trim, trim1, 10);
+	assert_int_equal(as9888_model_stats(&M)->resets, st0.resets);
+	assert_int_equal(as9888_model_stats(&M)->measurements,
+			 st0.measurements + 1);
+
+	/* a measurement running across the change completes with the new value */
+	at(AS9888_T_PD_NS);
+	wr(AS9888_REG_SLCT2, 0);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	at(AS9888_T_ACC_NS / 2);
+	as9888_model_set_temperature(&M, T, -20000);
+	at(AS9888_T_ACC_NS);
+	read_sample(&s);
+	assert_int_equal(s.tmps, 208);
+	u.temperature_mdegc = -20000;
+	expect_accel(&u, &s, -20);
+
+	/* one that completed before the change keeps the old value */
+	at(AS9888_T_PD_NS);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	at(AS9888_T_ACC_NS);
+	as9888_model_set_temperature(&M, T, 25000);
+	read_sample(&s);
+	assert_int_equal(s.tmps, 208);
+
+	/* the drift continues from the new value; clamped like a unit */
+	u.drift_udegc_s = 1000000;	/* 1 degC/s */
+	ready(&u);
+	T += 10000 * MSEC;
+	as9888_model_set_temperature(&M, T, 0);
+	assert_int_equal(as9888_model_temperature_mdegc(&M, T), 0);
+	assert_int_equal(as9888_model_temperature_mdegc(&M, T + 5000 * MSEC),
+			 5000);
+	as9888_model_set_temperature(&M, T, INT32_MIN);
+	assert_int_equal(as9888_model_temperature_mdegc(&M, T),
+			 AS9888_UNIT_TEMP_MIN_MDEGC);
+}
+
+static void test_live_up(void **state)
+{
+	static const s32 postures[][3] = {
+		{ 0, 0, -1 }, { -1, 0, 0 }, { 0, 1, 0 }, { 300, -200, 930 },
+	};
+	struct as9888_unit u = unit_default();
+	struct sample s;
+	unsigned int k;
+	u64 resets;
+
+	u.noise_mlsb = 0;
+	u.offset_mlsb[0] = 40000;
+	ready(&u);
+	resets = as9888_model_stats(&M)->resets;
+	measure(0, &s);
+	expect_accel(&u, &s, 25);
+	assert_true(s.a[2] > 200);
+	for (k = 0; k < ARRAY_SIZE(postures); k++) {
+		set_up(&u, postures[k][0], postures[k][1], postures[k][2]);
+		as9888_model_set_up(&M, T, u.up);
+		measure(0, &s);
+		expect_accel(&u, &s, 25);
+	}
+	assert_int_equal(as9888_model_stats(&M)->resets, resets);
+}
+
+static void test_live_noise(void **state)
+{
+	struct as9888_unit u = unit_default();
+	struct sample s0, s;
+	int k, differ = 0;
+
+	u.noise_mlsb = 0;
+	ready(&u);
+	measure(0, &s0);
+	as9888_model_set_noise(&M, T, 5000);
+	for (k = 0; k < 20; k++) {
+		measure(0, &s);
+		differ += memcmp(s.a, s0.a, sizeof(s.a)) != 0;
+	}
+	assert_true(differ > 10);
+	as9888_model_set_noise(&M, T, 0);
+	for (k = 0; k < 20; k++) {
+		measure(0, &s);
+		assert_memory_equal(s.a, s0.a, sizeof(s.a));
+	}
+}
+
 static void run_seq(u64 seed, s16 out[60][3])
 {
 	struct as9888_unit u = unit_default();
@@ -2041,6 +2163,9 @@ int main(void)
 		cmocka_unit_test(test_noise_rms_alpf),
 		cmocka_unit_test(test_noise_zero),
 		cmocka_unit_test(test_noise_seed_determinism),
+		cmocka_unit_test(test_live_temperature),
+		cmocka_unit_test(test_live_up),
+		cmocka_unit_test(test_live_noise),
 		cmocka_unit_test(test_fault_no_drdy),
 		cmocka_unit_test(test_fault_int1_open),
 		cmocka_unit_test(test_fault_int2_open),

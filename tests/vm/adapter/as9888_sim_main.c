@@ -37,6 +37,16 @@
  *  regs	the chip's configuration and trim registers as it holds them
  *		("0xRR 0xVV" per line), read without a bus transfer
  *  bus		"i2c-N" of the adapter, and the client name
+ * Live environment, without re-creating the chip or the device (registers,
+ * a running measurement and the counters stay; every measurement that
+ * completes after the write uses the new value; it also holds for a chip
+ * powered on again through "present" or the supply, until the next "unit"):
+ *  temperature	die temperature, degC, as the unit file's "temperature"
+ *		value (up to 3 decimals, -50..150); read: the temperature now
+ *		(with the unit's drift, which continues from a written value)
+ *  up		posture, as the unit file's "up" value (three numbers, any
+ *		scale, normalised); read: the normalised vector, 6 decimals
+ *  noise	accelerometer noise, LSB rms, as the unit file's "noise"
  */
 
 #include <linux/debugfs.h>
@@ -49,6 +59,7 @@
 #include <linux/irq_sim.h>
 #include <linux/irqdomain.h>
 #include <linux/ktime.h>
+#include <linux/math64.h>
 #include <linux/module.h>
 #include <linux/mutex.h>
 #include <linux/platform_device.h>
@@ -71,6 +82,33 @@
 
 #define AS9888_SIM_ADDR		0x0c
 #define AS9888_SIM_UNIT_MAX	4096
+
+/* The debugfs files that change the environment live */
+enum as9888_sim_knob_id {
+	AS9888_SIM_KNOB_TEMPERATURE = 0,
+	AS9888_SIM_KNOB_UP,
+	AS9888_SIM_KNOB_NOISE,
+	AS9888_SIM_NKNOBS,
+};
+
+static const char *const as9888_sim_knob_keys[AS9888_SIM_NKNOBS] = {
+	"temperature", "up", "noise",
+};
+
+/* Longest value accepted by a knob */
+#define AS9888_SIM_KNOB_MAX	80
+
+struct as9888_sim;
+
+/**
+ * struct as9888_sim_knob - one live environment file
+ * @s:		the board
+ * @id:		which one
+ */
+struct as9888_sim_knob {
+	struct as9888_sim *s;
+	enum as9888_sim_knob_id id;
+};
 
 enum as9888_sim_line {
 	AS9888_SIM_RSTN = 0,
@@ -109,6 +147,7 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @spi:	the AS9888 on SPI, or NULL
  * @dir:	debugfs directory
  * @rdev:	the chip's supply
+ * @knobs:	the live environment files of debugfs
  */
 struct as9888_sim {
 	spinlock_t lock;		/* see @lock above */
@@ -136,6 +175,7 @@ struct as9888_sim {
 	struct spi_device *spi;
 	struct dentry *dir;
 	struct regulator_dev *rdev;
+	struct as9888_sim_knob knobs[AS9888_SIM_NKNOBS];
 };
 
 static struct as9888_sim *sim;
@@ -791,6 +831,142 @@ static const struct file_operations as9888_sim_present_fops = {
 	.llseek = default_llseek,
 };
 
+/*
+ * A knob's value is parsed as the line "<key> = <value>" of a unit
+ * description, so that it has exactly the syntax and the limits of the
+ * unit file. One trailing newline is allowed, no other line.
+ */
+static int as9888_sim_knob_parse(struct as9888_sim_knob *k,
+				 const char __user *ubuf, size_t count,
+				 struct as9888_unit *unit)
+{
+	struct as9888_unit_error err = { };
+	char val[AS9888_SIM_KNOB_MAX + 1];
+	char line[AS9888_SIM_KNOB_MAX + 32];
+	const char *key = as9888_sim_knob_keys[k->id];
+	int len, ret;
+
+	if (!count || count > AS9888_SIM_KNOB_MAX)
+		return -EINVAL;
+	if (copy_from_user(val, ubuf, count))
+		return -EFAULT;
+	val[count] = '\0';
+	if (val[count - 1] == '\n')
+		val[--count] = '\0';
+	if (strlen(val) != count || strchr(val, '\n'))
+		return -EINVAL;
+	len = scnprintf(line, sizeof(line), "%s = %s\n", key, val);
+	ret = as9888_unit_parse(line, len, unit, &err);
+	if (ret)
+		pr_info("as9888_sim: %s: %s\n", key, err.msg);
+	return ret;
+}
+
+static ssize_t as9888_sim_knob_write(struct file *file,
+				     const char __user *ubuf, size_t count,
+				     loff_t *ppos)
+{
+	struct as9888_sim_knob *k = file->private_data;
+	struct as9888_sim *s = k->s;
+	struct as9888_unit unit;
+	unsigned int fire;
+	unsigned long flags;
+	int ret;
+	u64 now;
+
+	if (*ppos)
+		return -EINVAL;
+	ret = as9888_sim_knob_parse(k, ubuf, count, &unit);
+	if (ret)
+		return ret;
+
+	mutex_lock(&s->cfg_lock);
+	spin_lock_irqsave(&s->lock, flags);
+	now = ktime_get_ns();
+	switch (k->id) {
+	case AS9888_SIM_KNOB_TEMPERATURE:
+		as9888_model_set_temperature(&s->model, now,
+					     unit.temperature_mdegc);
+		s->unit.temperature_mdegc = unit.temperature_mdegc;
+		break;
+	case AS9888_SIM_KNOB_UP:
+		as9888_model_set_up(&s->model, now, unit.up);
+		memcpy(s->unit.up, unit.up, sizeof(s->unit.up));
+		break;
+	case AS9888_SIM_KNOB_NOISE:
+		as9888_model_set_noise(&s->model, now, unit.noise_mlsb);
+		s->unit.noise_mlsb = unit.noise_mlsb;
+		break;
+	default:
+		break;
+	}
+	/* the setter processed the events due until now: their edges */
+	fire = as9888_sim_edges(s, now);
+	as9888_sim_arm(s);
+	spin_unlock_irqrestore(&s->lock, flags);
+	as9888_sim_fire(s, fire);
+	mutex_unlock(&s->cfg_lock);
+	return count;
+}
+
+/* A fixed-point value with @places decimals, e.g. -20.500 */
+static int as9888_sim_put_fixed(char *buf, size_t len, s64 v,
+				unsigned int places, u32 one)
+{
+	u64 a = v < 0 ? -(u64)v : v;
+	u32 frac = do_div(a, one);
+
+	return scnprintf(buf, len, "%s%llu.%0*u", v < 0 ? "-" : "", a,
+			 places, frac);
+}
+
+static ssize_t as9888_sim_knob_read(struct file *file, char __user *ubuf,
+				    size_t count, loff_t *ppos)
+{
+	struct as9888_sim_knob *k = file->private_data;
+	struct as9888_sim *s = k->s;
+	unsigned long flags;
+	char buf[96];
+	int len = 0, i;
+	s32 t;
+
+	mutex_lock(&s->cfg_lock);
+	switch (k->id) {
+	case AS9888_SIM_KNOB_TEMPERATURE:
+		spin_lock_irqsave(&s->lock, flags);
+		t = as9888_model_temperature_mdegc(&s->model, ktime_get_ns());
+		spin_unlock_irqrestore(&s->lock, flags);
+		len = as9888_sim_put_fixed(buf, sizeof(buf), t, 3, 1000);
+		break;
+	case AS9888_SIM_KNOB_UP:
+		for (i = 0; i < AS9888_UNIT_AXES; i++) {
+			if (i)
+				buf[len++] = ' ';
+			len += as9888_sim_put_fixed(buf + len, sizeof(buf) - len,
+						    s->unit.up[i], 6,
+						    AS9888_UNIT_UP_ONE);
+		}
+		break;
+	case AS9888_SIM_KNOB_NOISE:
+		len = as9888_sim_put_fixed(buf, sizeof(buf), s->unit.noise_mlsb,
+					   3, 1000);
+		break;
+	default:
+		break;
+	}
+	mutex_unlock(&s->cfg_lock);
+	len += scnprintf(buf + len, sizeof(buf) - len, "\n");
+	return simple_read_from_buffer(ubuf, count, ppos, buf, len);
+}
+
+static const struct file_operations as9888_sim_knob_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.read = as9888_sim_knob_read,
+	.write = as9888_sim_knob_write,
+	.llseek = default_llseek,
+};
+
 static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 {
 	struct as9888_sim *s = sf->private;
@@ -939,7 +1115,7 @@ static int __init as9888_sim_init(void)
 	struct gpio_chip *gc;
 	const char *step = "allocation";
 	char name[32];
-	int ret;
+	int i, ret;
 
 	s = kzalloc(sizeof(*s), GFP_KERNEL);
 	if (!s)
@@ -1050,6 +1226,12 @@ static int __init as9888_sim_init(void)
 	debugfs_create_file("stats", 0600, s->dir, s, &as9888_sim_stats_fops);
 	debugfs_create_file("bus", 0400, s->dir, s, &as9888_sim_bus_fops);
 	debugfs_create_file("regs", 0400, s->dir, s, &as9888_sim_regs_fops);
+	for (i = 0; i < AS9888_SIM_NKNOBS; i++) {
+		s->knobs[i].s = s;
+		s->knobs[i].id = i;
+		debugfs_create_file(as9888_sim_knob_keys[i], 0600, s->dir,
+				    &s->knobs[i], &as9888_sim_knob_fops);
+	}
 
 	sim = s;
 	mutex_lock(&s->cfg_lock);

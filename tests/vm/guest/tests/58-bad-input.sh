@@ -8,8 +8,9 @@
 # Empty input is the newline that echo writes.
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
-CAL="1048576 -2097152 16908288 25000 0 0 1"
-echo "$CAL" > $DEV/in_accel_calibration
+# values that differ from the defaults, so that a change shows
+set_cal 12.5 -3.25 0.000016 30000
+echo 4 > $DEV/in_accel_oversampling_ratio
 OVF=99999999999999999999
 
 # bad_values ATTR: one bad value per line for ATTR (relative to $DEV);
@@ -18,16 +19,18 @@ bad_values() {
 	case "$1" in
 	in_accel_[xyz]_calibbias)
 		printf '%s\n' "" abc 68 -68 1.5 $OVF 4294967297 "1 2" 5abc "5 junk" ;;
-	in_accel_calibration)
-		printf '%s\n' "" garbage "1 2 3" "$CAL 5" "${CAL}x" "$CAL junk" \
-			"0 0 0 90000 0 0 1" "0 0 0 -31000 0 0 1" \
-			"1073741825 0 0 25000 0 0 1" "0 -1073741825 0 25000 0 0 1" \
-			"0 0 0 25000 0 0 -2" "0 0 0 25000 0 0 0" "0 0 0 25000 1 0 1" \
-			"0 0 0 $OVF 0 0 1" "0 0 0 4294992296 0 0 1" \
-			"4294967296 0 0 25000 0 0 1" "0 0 0 25000 0 0 4294967297" \
-			"0 0 0 25000.5 0 0 1" "none junk" ;;
-	in_accel_filter_low_pass_en | scan_elements/*_en | buffer0/*_en | \
-	buffer/enable | buffer0/enable)
+	in_accel_[xyz]_caliboffset)
+		# decimal, up to 6 places, |v| <= 8192 chip LSB
+		printf '%s\n' "" abc 8192.000001 -8192.000001 8193 -9000 1.0000001 \
+			"1." ".5" "-.5" "1.2.3" "--1" "+1" "- 1" 1e3 0x10 "1 2" 5abc \
+			"5 junk" 1.5x $OVF 4294967296 4294967297.5 "1,5" nan ;;
+	in_accel_calibtemp)
+		# integer mdegC, -30000..85000 (the valid TMPS range)
+		printf '%s\n' "" abc 85001 -30001 90000 -40000 25000.5 $OVF \
+			4294992296 "25000 1" 25000abc "25 000" 0x61a8x ;;
+	in_accel_oversampling_ratio)
+		printf '%s\n' "" abc 0 2 3 8 16 -1 -4 1.5 4.0001 $OVF "1 4" 4abc ;;
+	scan_elements/*_en | buffer0/*_en | buffer/enable | buffer0/enable)
 		printf '%s\n' "" abc 2 -1 $OVF x1 ;;
 	sampling_frequency)
 		printf '%s\n' "" abc 0 3 1000 -5 100.5 $OVF "100 200" 100abc ;;
@@ -113,8 +116,11 @@ busy buffer0/in_accel_y_en 1
 busy buffer/length 64
 busy trigger/current_trigger ""
 busy in_accel_x_calibbias 0
-busy in_accel_filter_low_pass_en 1
+busy in_accel_oversampling_ratio 1
 busy selftest 1
 echo 0 > $DEV/buffer/enable
 echo "" > $DEV/trigger/current_trigger
-echo none > $DEV/in_accel_calibration
+echo 1 > $DEV/in_accel_oversampling_ratio
+eq "oversampling_ratio: the values available" \
+	"$(cat $DEV/in_accel_oversampling_ratio_available)" "1 4"
+set_cal 0 0 0 25000

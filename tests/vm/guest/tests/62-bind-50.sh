@@ -35,13 +35,15 @@ uptime_s() { cut -d' ' -f1 /proc/uptime; }
 t0=$(uptime_s)
 eq "50 unbind/bind cycles" "$(repeat 50 unbind_bind)" 0
 wait_dev 2
-near "reads after the cycles" "$(cat $DEV/in_accel_z_raw)" 259 10
+# 1 g = 1024 LSB; uncalibrated (zero offset at t_RT = 23.75 degC) Z reads
+# about 1043 at 25 degC: Kote -4.3 chip LSB/degC over 1.25 degC
+near "reads after the cycles (z about 1 g)" "$(cat $DEV/in_accel_z_raw)" 1043 40
 t1=$(uptime_s)
 eq "50 reloads of as9888_i2c" "$(repeat 50 reload_i2c)" 0
 t2=$(uptime_s)
 eq "5 reloads of as9888_i2c, as9888_core and as9888_calib" "$(repeat 5 reload_driver)" 0
 wait_dev 2
-near "reads after the reloads" "$(cat $DEV/in_accel_z_raw)" 259 10
+near "reads after the reloads (z about 1 g)" "$(cat $DEV/in_accel_z_raw)" 1043 40
 t3=$(uptime_s)
 echo "$t0 $t1 $t2 $t3" | awk '{ printf "# AS9888-METRIC bind_cycles_s=%.1f i2c_reloads_s=%.1f driver_reloads_s=%.1f\n", $2 - $1, $3 - $2, $4 - $3 }'
 leak_check

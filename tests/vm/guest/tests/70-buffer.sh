@@ -3,6 +3,7 @@
 # trigger: sample counts, monotonic timestamps, values, bus transfers.
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
+set_cal 0 0 0 25000
 
 T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
 check "driver registers its data-ready trigger" test -n "$T"
@@ -18,7 +19,7 @@ if capture "$T" 2 /tmp/buf1; then
 	# does not add up
 	near "data-ready trigger at 100 Hz: mean period 10000 us +- 10%" "$P" 10000 1000
 	check "data-ready trigger: timestamps strictly increasing" monotonic /tmp/buf1
-	eq "data-ready trigger: every z sample near St(25) = 258" "$(zbad /tmp/buf1)" 0
+	eq "data-ready trigger: every z sample 1 g (1024 +- 4)" "$(zbad /tmp/buf1)" 0
 	M=$((CAP_M1 - CAP_M0))
 	if [ $M -gt 0 ]; then
 		TPS=$(echo "$((CAP_T1 - CAP_T0)) $M" | awk '{ printf "%.2f", $1 / $2 }')
@@ -33,7 +34,6 @@ else
 fi
 
 mkdir -p /sys/kernel/config/iio/triggers/hrtimer/as9888t0
-echo 50 > /sys/bus/iio/devices/trigger*/sampling_frequency 2>/dev/null
 for t in /sys/bus/iio/devices/trigger*; do
 	[ "$(cat $t/name)" = as9888t0 ] && echo 50 > $t/sampling_frequency
 done
@@ -43,9 +43,11 @@ if capture as9888t0 2 /tmp/buf2; then
 	check "hrtimer trigger: at least 10 samples ($S)" test "$S" -ge 10
 	P=$(period_us /tmp/buf2)
 	diag "hrtimer trigger: mean sample period $P us"
-	near "hrtimer trigger at 50 Hz: mean period 20000 us +- 5%" "$P" 20000 1000
+	# the kernel's hrtimer trigger re-arms from the time it ran: under
+	# TCG on a busy machine every late wake-up adds to the period
+	near "hrtimer trigger at 50 Hz: mean period 20000 us +- 20%" "$P" 20000 4000
 	check "hrtimer trigger: timestamps strictly increasing" monotonic /tmp/buf2
-	eq "hrtimer trigger: every z sample near St(25) = 258" "$(zbad /tmp/buf2)" 0
+	eq "hrtimer trigger: every z sample 1 g (1024 +- 4)" "$(zbad /tmp/buf2)" 0
 else
 	nok "buffer enable with an hrtimer trigger"
 fi

@@ -4,31 +4,40 @@
 # capture.
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
+set_cal 0 0 0 25000
 I=$(iio_info 2>&1)
 echo "$I" | grep -E 'context|as9888|channels found|: *\(input' | sed 's/^/# /'
 has() { echo "$I" | grep -q "$1"; }
 check "iio_info: local backend" has 'IIO context created with local backend'
 check "iio_info: the as9888 device, buffer capable" has 'iio:device[0-9]*: as9888 (buffer capable)'
 check "iio_info: 8 channels" has '8 channels found'
-for c in accel_x accel_y accel_z magn_x magn_y magn_z; do
-	check "iio_info: channel $c" has "	$c:  (input, index: [0-5], format: le:s1[23]/16>>0)"
+# the accelerometer is compensated on 1024 LSB/g: s16 in 16 bits (libiio
+# writes S when the value fills its storage)
+for c in accel_x accel_y accel_z; do
+	check "iio_info: channel $c, s16 in 16 bits" has "	$c:  (input, index: [0-2], format: le:S16/16>>0)"
+done
+for c in magn_x magn_y magn_z; do
+	check "iio_info: channel $c, s13 in 16 bits" has "	$c:  (input, index: [3-5], format: le:s13/16>>0)"
 done
 check "iio_info: channel temp, u8 in 16 bits" has 'temp:  (input, index: 6, format: le:u8/16>>0)'
 check "iio_info: channel timestamp, s64" has 'timestamp:  (input, index: 7, format: le:S64/64>>0)'
-for a in calibbias calibbias_available calibration filter_low_pass_en mount_matrix offset raw scale; do
+for a in calibbias calibbias_available caliboffset calibtemp mount_matrix \
+	oversampling_ratio oversampling_ratio_available raw scale; do
 	check "iio_info: accel attribute $a" has "attr  [0-9]: $a value: "
 done
 check "iio_info: device attribute selftest" has 'attr  [0-9]: selftest value: none'
-check "iio_info: device attribute sampling_frequency_available" \
-	has 'sampling_frequency_available value: 1 2 5 10 25 50 100 200 500'
+check "iio_info: device attribute sampling_frequency_available as sysfs has it" \
+	has "sampling_frequency_available value: $(cat $DEV/sampling_frequency_available)"
 check "iio_info: current trigger is the device's own" has 'Current trigger: trigger[0-9]*(as9888-dev[0-9]*)'
 check_not "iio_info: no attribute read error on the as9888" \
 	sh -c "echo '$I' | sed -n '/as9888 (buffer capable)/,/Current trigger/p' | grep -q ERROR"
 
 A=$(iio_attr -c as9888 accel_z scale 2>&1)
-eq "iio_attr: accel_z scale as sysfs has it" "$A" "$(cat $DEV/in_accel_z_scale)"
+eq "iio_attr: accel_z scale as sysfs has it" "$A" "$(cat $DEV/in_accel_scale)"
 Z=$(iio_attr -c as9888 accel_z raw 2>&1)
-near "iio_attr: accel_z raw near St(25) = 258" "$Z" 258 3
+near "iio_attr: accel_z raw 1 g = 1024" "$Z" 1024 3
+eq "iio_attr: accel_x caliboffset" "$(iio_attr -c as9888 accel_x caliboffset 2>&1)" 0.000000
+eq "iio_attr: accel calibtemp" "$(iio_attr -c as9888 accel_x calibtemp 2>&1)" 25000
 b0=$(cat $DEV/in_accel_y_calibbias)
 W=$(iio_attr -c as9888 accel_y calibbias $((b0 + 4)) 2>&1)
 eq "iio_attr: a write prints the value read back" "$W" $((b0 + 4))
@@ -48,7 +57,7 @@ rc=$?
 sed 's/^/# iio_readdev: /; s/WARNING:/warning:/' /tmp/readdev.err
 eq "iio_readdev: exit status 0" $rc 0
 eq "iio_readdev: 50 scans, 800 bytes" "$(wc -c < /tmp/readdev.bin)" 800
-eq "iio_readdev: every z sample near St(25) = 258" "$(zbad /tmp/readdev.bin)" 0
+eq "iio_readdev: every z sample 1 g (1024 +- 4)" "$(zbad /tmp/readdev.bin)" 0
 check "iio_readdev: timestamps strictly increasing" monotonic /tmp/readdev.bin
 P=$(period_us /tmp/readdev.bin)
 near "iio_readdev: mean period at 100 Hz is 10000 us +- 10%" "$P" 10000 1000

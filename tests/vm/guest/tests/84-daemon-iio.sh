@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: GPL-2.0
 # as9888-calibd's test engine through the bound driver (--backend iio):
 # the full factory test on a healthy unit, its record put in effect, the
-# same DAC values as the register engine finds on the same unit; check,
+# same DAC values as the register engine finds on the same unit, the
+# calibration the record implies and compensated readings of 0, 0 and 1 g;
+# check,
 # recalibrate after a "shock" and rollback, also as daemon requests; every
 # fault fails at its step; the device's attributes are left as found.
 CALIBD=/bin/as9888-calibd
@@ -20,7 +22,8 @@ record_dac() { sed -n 's/^dac = //p' "$1"; }
 # state: every attribute the test may change, one line each
 state() {
 	for a in in_accel_x_calibbias in_accel_y_calibbias in_accel_z_calibbias \
-		in_accel_calibration in_accel_filter_low_pass_en sampling_frequency \
+		in_accel_x_caliboffset in_accel_y_caliboffset in_accel_z_caliboffset \
+		in_accel_calibtemp in_accel_oversampling_ratio sampling_frequency \
 		trigger/current_trigger buffer/length; do
 		echo "$a=$(cat $DEV/$a)"
 	done
@@ -44,7 +47,7 @@ wait_dev 5
 
 # Leave odd settings in place: the test must put every one of them back
 echo 10 > $DEV/sampling_frequency
-echo 1 > $DEV/in_accel_filter_low_pass_en
+echo 4 > $DEV/in_accel_oversampling_ratio
 echo 3 > $DEV/in_accel_x_calibbias
 SE=$DEV/scan_elements
 [ -d "$SE" ] || SE=$DEV/buffer0
@@ -66,25 +69,26 @@ check "self-test judged from the driver's readings" \
 	grep -q '"self-test Z after adjustment", "measured": "[0-9]*\.[0-9]*".*"pass"' /tmp/iio/ft.json
 check "record written" test -s /tmp/iio/rec
 AFTER=$(state)
-CAL=$(cat $DEV/in_accel_calibration)
-check "the new calibration is in effect" \
-	sh -c "echo '$CAL' | awk 'NF == 7 && \$7 != 0 { ok = 1 } END { exit !ok }'"
+CAL=$(cal_get)
+diag "caliboffset x y z, calibtemp: $CAL"
+cal_near "the new calibration is in effect: what the record implies" "$CAL" "$(rec_cal /tmp/iio/rec)"
 # everything but the DAC and the calibration as it was
 eq "the other attributes are as they were found" \
-	"$(echo "$AFTER" | grep -v -e calibbias -e calibration)" \
-	"$(echo "$BEFORE" | grep -v -e calibbias -e calibration)"
-echo none > $DEV/in_accel_calibration
-check "restore of that record gives the same calibration" \
-	sh -c "$CALIBD restore --backend iio --record /tmp/iio/rec && [ \"\$(cat $DEV/in_accel_calibration)\" = '$CAL' ]"
+	"$(echo "$AFTER" | grep -v -e calib)" \
+	"$(echo "$BEFORE" | grep -v -e calib)"
+set_cal 0 0 0 25000
+check "restore of that record" $CALIBD restore --backend iio --record /tmp/iio/rec
+eq "restore of that record gives the same calibration" "$(cal_get)" "$CAL"
 
-# Level axes compensated: (raw + offset) near 0 for X and Y
-echo 0 > $DEV/in_accel_filter_low_pass_en
-for a in x y; do
-	R=$(cat $DEV/in_accel_${a}_raw)
-	O=$(cat $DEV/in_accel_${a}_offset)
-	check "in_accel_${a}: raw $R + offset $O within 4 LSB of 0 g" \
-		awk "BEGIN { d = $R + $O; exit !(d < 4 && d > -4) }"
-done
+# Compensated readings (16 reads each, noise 0.5 chip LSB): 0 on the level
+# axes, 1 g on Z, with and without the low-pass filter
+A=$(accel_mean 16)
+diag "compensated readings, oversampling_ratio 4: $A"
+accel_near "compensated readings, oversampling_ratio 4: 0 0 1 g" "$A" "0 0 $G_LSB" 4
+echo 1 > $DEV/in_accel_oversampling_ratio
+A=$(accel_mean 16)
+diag "compensated readings, oversampling_ratio 1: $A"
+accel_near "compensated readings, oversampling_ratio 1: 0 0 1 g" "$A" "0 0 $G_LSB" 4
 
 # The register engine on the same unit finds the same DAC values
 $CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/iio/unit.txt \
@@ -99,19 +103,24 @@ check "check: no recalibration needed right after the factory test" \
 set_unit "temperature = 25" "offset = 60 -25 60" "noise = 0.5" "seed = 7"
 wait_dev 5
 check "restore after the re-probe" $CALIBD restore --backend iio --record /tmp/iio/rec
+# 20 chip LSB on X = 20 / 258.6 * 1024 = 79 LSB
+A=$(accel_mean 16)
+diag "compensated readings after the shock, old calibration: $A"
+within "after the shock: x reads the 20 chip LSB of the shock (79 LSB)" "${A%% *}" 79 8
 $CALIBD check --backend iio --record /tmp/iio/rec > /tmp/iio/check.txt 2>&1
 sed 's/^/# /' /tmp/iio/check.txt
 check "check: recalibration advisable after the shock" grep -q 'advisable' /tmp/iio/check.txt
-OLD_CAL=$(cat $DEV/in_accel_calibration)
+OLD_CAL=$(cal_get)
 check "recalibrate through the driver" \
 	sh -c "$CALIBD recalibrate --backend iio --record /tmp/iio/rec > /tmp/iio/recal.txt 2>&1"
 tail -n 2 /tmp/iio/recal.txt | sed 's/^/# /'
 check "the previous record is kept" test -s /tmp/iio/rec.previous
+accel_near "after recalibrating: compensated readings 0 0 1 g" "$(accel_mean 16)" "0 0 $G_LSB" 4
 check "check after recalibrating: no recalibration needed" \
 	sh -c "$CALIBD check --backend iio --record /tmp/iio/rec | grep -q 'No recalibration needed'"
 check "rollback through the driver" $CALIBD rollback --backend iio --record /tmp/iio/rec
 eq "rollback puts the earlier calibration back in effect" \
-	"$(cat $DEV/in_accel_calibration)" "$OLD_CAL"
+	"$(cal_get)" "$OLD_CAL"
 
 # The same through the daemon's socket
 $CALIBD daemon --backend iio --record /tmp/iio/rec --socket /tmp/iio/sock 2>/tmp/iio/daemon.log &
@@ -150,8 +159,8 @@ for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
 	[ "$2" = any ] || eq "$1: the test ends at $2" "$GOT" "$2"
 	if [ "$GOT" = pass ]; then
 		eq "$1: passed, attributes as found but for the new calibration" \
-			"$(state | grep -v -e calibbias -e calibration)" \
-			"$(echo "$S0" | grep -v -e calibbias -e calibration)"
+			"$(state | grep -v -e calib)" \
+			"$(echo "$S0" | grep -v -e calib)"
 	else
 		check_not "$1: no record written" test -e /tmp/iio/frec
 		eq "$1: failed, every attribute as found" "$(state)" "$S0"
