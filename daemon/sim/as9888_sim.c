@@ -4,11 +4,14 @@
  */
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "as9888_sim.h"
 
@@ -205,6 +208,41 @@ static void set_err(char *errbuf, size_t errlen, const char *path,
 		snprintf(errbuf, errlen, "%s: %s", path, msg);
 }
 
+/*
+ * The unit file for reading: never waiting on a FIFO or socket put there
+ * (refused: only a file or a device such as /dev/null gives a unit).
+ */
+static FILE *open_unit_file(const char *path, char *errbuf, size_t errlen,
+			    int *ret)
+{
+	struct stat st;
+	FILE *f;
+	int fd;
+
+	fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	if (fd < 0) {
+		*ret = -errno;
+		set_err(errbuf, errlen, path, strerror(errno));
+		return NULL;
+	}
+	if (fstat(fd, &st) || S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode) ||
+	    S_ISDIR(st.st_mode)) {
+		*ret = -EINVAL;
+		set_err(errbuf, errlen, path,
+			"not a unit file (a FIFO, socket or directory): give a regular file");
+		close(fd);
+		return NULL;
+	}
+	f = fdopen(fd, "rb");
+	if (!f) {
+		*ret = -errno;
+		set_err(errbuf, errlen, path, strerror(errno));
+		close(fd);
+	}
+
+	return f;
+}
+
 int as9888_sim_load_unit_file(const char *path, struct as9888_unit *unit,
 			      char *errbuf, size_t errlen)
 {
@@ -216,12 +254,9 @@ int as9888_sim_load_unit_file(const char *path, struct as9888_unit *unit,
 
 	if (errbuf && errlen)
 		errbuf[0] = '\0';
-	f = fopen(path, "rb");
-	if (!f) {
-		ret = -errno;
-		set_err(errbuf, errlen, path, strerror(-ret));
+	f = open_unit_file(path, errbuf, errlen, &ret);
+	if (!f)
 		return ret;
-	}
 	text = malloc(UNIT_FILE_MAX + 1);
 	if (!text) {
 		fclose(f);

@@ -70,6 +70,18 @@ static const struct option long_opts[] = {
 	{ NULL, 0, NULL, 0 },
 };
 
+/* The long name of option @opt (the option, never its value) */
+static const char *option_name(int opt)
+{
+	const struct option *l;
+
+	for (l = long_opts; l->name; l++)
+		if (l->val == opt)
+			return l->name;
+
+	return "?";
+}
+
 static int bad(char *err, size_t errlen, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
@@ -302,8 +314,8 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 			return bad(err, errlen, "unknown option %s", argv[optind - 1]);
 		}
 		if (!option_allowed(o->command, opt))
-			return bad(err, errlen, "%s does not take %s",
-				   commands[o->command], argv[optind - 1]);
+			return bad(err, errlen, "%s does not take --%s",
+				   commands[o->command], option_name(opt));
 		switch (opt) {
 		case OPT_RECORD:
 			if (!*optarg)

@@ -132,4 +132,13 @@ printf 'up = 0 0 1\nnoise = lots\n' >"$work/bad.unit"
 run factory-test $vt --record "$rec" --unit "$work/bad.unit"
 check "bad unit file: exit 1 with file and line" eval '[ $rc -eq 1 ] && says "bad.unit:2" err'
 
+mkfifo "$work/fifo.unit"
+timeout 60 "$calibd" factory-test $vt --record "$rec" --unit "$work/fifo.unit" >"$work/out" 2>"$work/err"
+rc=$?
+check "a FIFO as --unit: refused at once, not waited on" \
+	eval '[ $rc -eq 1 ] && says "fifo.unit: not a unit file" err'
+run show --record "$rec" --samples 10
+check "an option a command does not take is named, not its value" \
+	eval '[ $rc -eq 2 ] && says "show does not take --samples" err'
+
 tap_end
