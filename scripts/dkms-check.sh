@@ -67,7 +67,7 @@ mkdir -p "$STAGE/$AS9888_DRIVER_REL" "$D/tree" "$LOG_DIR"
 cp "$CONF" "$STAGE/dkms.conf"
 cp "$SRC_ROOT/Kbuild" "$STAGE/"
 rsync -a --include='*.c' --include='*.h' --include='Makefile' --include='Kbuild' \
-	--include='Kconfig' --exclude='*' "$SRC_ROOT/$AS9888_DRIVER_REL/" "$STAGE/$AS9888_DRIVER_REL/"
+	--include='Kconfig' --include='compat/' --exclude='*' "$SRC_ROOT/$AS9888_DRIVER_REL/" "$STAGE/$AS9888_DRIVER_REL/"
 
 DKMS=(dkms --dkmstree "$D/tree" --sourcetree "$D/source")
 DLOG="$LOG_DIR/dkms-check.log"

@@ -134,7 +134,7 @@ build_one() {
 	mkdir -p "$stage/$AS9888_DRIVER_REL"
 	cp "$SRC_ROOT/Kbuild" "$stage/"
 	rsync -a --include='*.c' --include='*.h' --include='Makefile' --include='Kbuild' \
-		--include='Kconfig' --exclude='*' "$DRV/" "$stage/$AS9888_DRIVER_REL/"
+		--include='Kconfig' --include='compat/' --exclude='*' "$DRV/" "$stage/$AS9888_DRIVER_REL/"
 	: >"$slog"
 	: >"$runs"
 

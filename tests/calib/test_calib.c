@@ -571,6 +571,363 @@ static void rounding(void **state)
 	assert_int_equal(as9888_div_round_s64(1, 0), 0);
 }
 
+/*
+ * The functions below are userspace-only (lib/calib/as9888_calib_user.c);
+ * these cases were the KUnit suite's before those functions left the
+ * kernel, with the same assertions.
+ */
+#define Q16(x)		((s32)((x) * AS9888_Q16_ONE))
+
+/* Temperature, section 5: the TMPS code of a temperature */
+static void kunit_tmps_code(void **state)
+{
+	static const struct {
+		u8 tmps;
+		s32 mdegc;
+	} cases[] = {
+		{ 176, 0 }, { 0x28, 85000 }, { 0xe0, -30000 }, { 136, 25000 },
+		{ 137, 24375 }, { 0x27, 85625 }, { 0xe1, -30625 }, { 0, 110000 },
+		{ 255, -49375 },
+	};
+	unsigned int i;
+
+	for (i = 0; i < ARRAY_SIZE(cases); i++)
+		assert_int_equal(as9888_mdegc_to_tmps(cases[i].mdegc),
+				 cases[i].tmps);
+}
+
+static void kunit_temperature_rounding(void **state)
+{
+	s32 t;
+
+	/* rint(176 - 1.6 t) */
+	assert_int_equal(as9888_mdegc_to_tmps(31250), 126);
+	assert_int_equal(as9888_mdegc_to_tmps(25400), 135);
+	/* Mean of 136, 137, 137: TMPS 136.667 is 24.583 degC */
+	assert_int_equal(as9888_tmps_mean_to_mdegc(410, 3, &t), 0);
+	assert_int_equal(t, 24583);
+	assert_int_equal(as9888_tmps_mean_to_mdegc(410, 0, &t), -EINVAL);
+	assert_int_equal(as9888_tmps_mean_to_mdegc(256 * 3, 3, &t),
+			-ERANGE);
+	assert_int_equal(as9888_tmps_mean_to_mdegc(-1, 3, &t), -ERANGE);
+}
+
+/* 6.5: Ot_L = A + St(t_L) * G */
+struct as9888_level_case {
+	const char *name;
+	s32 a_q16, st_q16;
+	int g;
+	int ret;
+	s32 ot_l_q16;
+};
+
+static const struct as9888_level_case as9888_level_cases[] = {
+	{ "Z up", Q16(270) + Q16(1) / 2, Q16(259), -1, 0,
+	  Q16(11) + Q16(1) / 2 },
+	{ "Z down", Q16(-250), Q16(259), 1, 0, Q16(9) },
+	{ "horizontal axis", Q16(3), Q16(259), 0, 0, Q16(3) },
+	{ "G of 2", 0, Q16(259), 2, -EINVAL, 0 },
+	{ "negative St", 0, -1, 1, -EINVAL, 0 },
+};
+
+static void check_offset_level(const struct as9888_level_case *c)
+{
+	s32 ot_l = 0;
+
+	assert_int_equal(as9888_offset_level_q16(c->a_q16, c->st_q16,
+						      c->g, &ot_l), c->ret);
+	if (!c->ret)
+		assert_int_equal(ot_l, c->ot_l_q16);
+}
+
+static void kunit_offset_level(void **state)
+{
+	const struct as9888_level_case *c;
+
+	for (c = as9888_level_cases; c < as9888_level_cases + ARRAY_SIZE(as9888_level_cases);
+	     c++)
+		check_offset_level(c);
+}
+
+/* 6.7: a = (raw - Ot(t)) / St(t) */
+struct as9888_accel_case {
+	const char *name;
+	s16 raw;
+	s32 ot_q16, st_q16;
+	int ret;
+	s32 ug;
+};
+
+static const struct as9888_accel_case as9888_accel_cases[] = {
+	{ "1 g", 271, Q16(12), Q16(259), 0, 1000000 },
+	{ "-0.05 g", -10, Q16(2) + Q16(1) / 2, Q16(250), 0, -50000 },
+	{ "zero St", 1, 0, 0, -EINVAL, 0 },
+};
+
+static void check_accel(const struct as9888_accel_case *c)
+{
+	s32 ug = 0;
+
+	assert_int_equal(as9888_accel_ug(c->raw, c->ot_q16, c->st_q16, &ug),
+			c->ret);
+	if (!c->ret)
+		assert_int_equal(ug, c->ug);
+}
+
+static void kunit_accel(void **state)
+{
+	const struct as9888_accel_case *c;
+
+	for (c = as9888_accel_cases; c < as9888_accel_cases + ARRAY_SIZE(as9888_accel_cases);
+	     c++)
+		check_accel(c);
+}
+
+/* Every raw value comes back exactly from its compensated reading */
+static void kunit_uncompensate(void **state)
+{
+	static const s32 sts[] = {
+		Q16(141) + 7, Q16(256), Q16(346) - 3, Q16(1023),
+	};
+	static const s32 ots[] = { 0, Q16(-300) - 12345, Q16(517) + 999 };
+	unsigned int i, j;
+	s16 out, back;
+	int raw;
+
+	for (i = 0; i < ARRAY_SIZE(sts); i++) {
+		for (j = 0; j < ARRAY_SIZE(ots); j++) {
+			s32 ot = ots[j], st = sts[i];
+
+			for (raw = AS9888_ACC_MIN; raw <= AS9888_ACC_MAX; raw++) {
+				int ret;
+
+				if (as9888_accel_compensate(raw, ot, st, &out))
+					continue;
+				ret = as9888_accel_uncompensate(out, ot, st, &back);
+				assert_int_equal(ret, 0);
+				assert_int_equal(back, raw);
+			}
+		}
+	}
+
+	/* A value at a limit may have been clamped */
+	assert_int_equal(as9888_accel_uncompensate(32767, 0, Q16(256),
+							&back), -ERANGE);
+	assert_int_equal(as9888_accel_uncompensate(-32768, 0, Q16(256),
+							&back), -ERANGE);
+	assert_int_equal(as9888_accel_uncompensate(5, 0, 0, &back),
+			-EINVAL);
+}
+
+/* A level test, Z up, becomes a calibration at the factory DAC values */
+static void kunit_cal_from_level(void **state)
+{
+	const s32 a[AS9888_AXES] = { Q16(10), Q16(-20), Q16(270) };
+	const s8 g[AS9888_AXES] = { 0, 0, -1 }, g_bad[AS9888_AXES] = { 0, 0, 2 };
+	struct as9888_accel_cal cal;
+	struct as9888_eeprom ee;
+	u8 da[AS9888_AXES];
+	int axis;
+
+	assert_int_equal(as9888_eeprom_decode(example, &ee), 0);
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		da[axis] = ee.axis[axis].da;
+
+	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 23750, g, da,
+							  &cal), 0);
+	assert_int_equal(cal.t_mdegc, 23750);
+	assert_int_equal(cal.offset_q16[0], Q16(10));
+	assert_int_equal(cal.offset_q16[1], Q16(-20));
+	/* Ot_L = A + St(t_L) * G = 270 - 259 */
+	assert_int_equal(cal.offset_q16[2], Q16(11));
+
+	/* Measured one code up: the factory DAC reads one step lower */
+	da[0] = as9888_lin2dac(ee.axis[0].ga,
+			       as9888_dac2lin(ee.axis[0].ga, da[0]) + 1);
+	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 23750, g, da,
+							  &cal), 0);
+	assert_int_equal(cal.offset_q16[0], Q16(10) - 3050403);
+
+	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 90000, g, da,
+							  &cal), -ERANGE);
+	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 23750, g_bad,
+							  da, &cal), -EINVAL);
+}
+
+static void kunit_mean(void **state)
+{
+	s32 m;
+
+	assert_int_equal(as9888_mean_q16(271 * 3 + 1, 3, &m), 0);
+	assert_int_equal(m, Q16(271) + 21845);
+	assert_int_equal(as9888_mean_q16(-5, 2, &m), 0);
+	assert_int_equal(m, -5 * 32768);
+	assert_int_equal(as9888_mean_q16(5, 0, &m), -EINVAL);
+	assert_int_equal(as9888_mean_q16(32768LL * 2, 2, &m), -ERANGE);
+	assert_int_equal(as9888_mean_q16(0, AS9888_SAMPLES_MAX + 1, &m),
+			-EINVAL);
+}
+
+/* 6.6, D5, D6: DACopt, rint ties to even, clamping */
+struct as9888_dac_opt_case {
+	const char *name;
+	u8 ga, da, ee_gain;
+	s32 ot_l_q16;
+	int ret;
+	u8 opt;
+};
+
+static const struct as9888_dac_opt_case as9888_dac_opt_cases[] = {
+	/* lin -13 - rint(44 / 2048 * 100 = 2.148) = -15 */
+	{ "X", 0x1c, 0x0d, 28, Q16(100), 0, 15 },
+	/* polarity: lin -15 - rint(51 / 2048 * -40.2 = -1.001) = -14 */
+	{ "Y with polarity", 0x63, 0x8f, 35, -2634547, 0, 0x8e },
+	{ "tie 0.5 to 0", 0x10, 0x80, 16, Q16(32), 0, 0x80 },
+	{ "tie 1.5 to 2", 0x10, 0x80, 16, Q16(96), 0, 2 },
+	{ "tie 2.5 to 2", 0x10, 0x80, 16, Q16(160), 0, 2 },
+	{ "tie -0.5 to 0", 0x10, 0x80, 16, Q16(-32), 0, 0x80 },
+	{ "just above a tie", 0x10, 0x80, 16, Q16(32) + 1, 0, 1 },
+	{ "clamped low", 0x1c, 0x0d, 28, Q16(3000), -ERANGE, 67 },
+	{ "clamped high", 0x1c, 0xc3, 28, Q16(-3000), -ERANGE, 0x80 + 67 },
+	{ "at the limit", 0x10, 0x80, 16, Q16(-67 * 64), 0, 0x80 + 67 },
+};
+
+static void check_dac_opt(const struct as9888_dac_opt_case *c)
+{
+	u8 opt = 0;
+
+	assert_int_equal(as9888_dac_opt(c->ga, c->da, c->ee_gain,
+					     c->ot_l_q16, &opt), c->ret);
+	assert_int_equal(opt, c->opt);
+}
+
+static void kunit_dac_opt(void **state)
+{
+	const struct as9888_dac_opt_case *c;
+
+	for (c = as9888_dac_opt_cases; c < as9888_dac_opt_cases + ARRAY_SIZE(as9888_dac_opt_cases);
+	     c++)
+		check_dac_opt(c);
+}
+
+/* Steps 3-14..3-22 */
+static void kunit_accel_judgments(void **state)
+{
+	assert_true(as9888_acc_saturated(-2048));
+	assert_true(as9888_acc_saturated(2047));
+	assert_false(as9888_acc_saturated(-2047));
+	assert_false(as9888_acc_saturated(2046));
+	assert_true(as9888_fluctuation_ok(10, 25,
+						      AS9888_FLUCTUATION_DEFAULT));
+	assert_false(as9888_fluctuation_ok(10, 26,
+						       AS9888_FLUCTUATION_DEFAULT));
+	assert_false(as9888_fluctuation_ok(-2048, 2047, 4094));
+	assert_true(as9888_fluctuation_ok(-2048, 2047, 4095));
+	assert_false(as9888_fluctuation_ok(5, 4, 100));
+}
+
+/* Note 2, D7: N >= n * (sigma / error)^2, at least 10 */
+struct as9888_samples_case {
+	const char *name;
+	u32 n, sigma_q16, error_q16;
+	u32 samples;
+};
+
+static const struct as9888_samples_case as9888_samples_cases[] = {
+	{ "the note's example", 1, Q16(40), Q16(10), 16 },
+	{ "n = 4", 4, Q16(1), Q16(1) / 2, 16 },
+	{ "rounds up", 17, Q16(1) + 1, Q16(1), 18 },
+	{ "never fewer than 10", 1, 1000, Q16(1), 10 },
+	{ "too noisy", 1, Q16(100), Q16(1), AS9888_SAMPLES_MAX + 1 },
+	{ "no error allowed", 1, 1, 0, AS9888_SAMPLES_MAX + 1 },
+};
+
+static void check_samples(const struct as9888_samples_case *c)
+{
+	assert_int_equal(as9888_samples_needed(c->n, c->sigma_q16,
+						    c->error_q16), c->samples);
+}
+
+static void kunit_samples(void **state)
+{
+	const struct as9888_samples_case *c;
+
+	for (c = as9888_samples_cases; c < as9888_samples_cases + ARRAY_SIZE(as9888_samples_cases);
+	     c++)
+		check_samples(c);
+}
+
+/* D8 on all six postures */
+struct as9888_posture_case {
+	const char *name;
+	s32 a[AS9888_AXES];
+	s8 g[AS9888_AXES];
+	int vertical;
+};
+
+static const struct as9888_posture_case as9888_posture_cases[] = {
+	{ "Z up", { 10, -3, 260 }, { 0, 0, -1 }, 2 },
+	{ "Z down", { 10, -3, -250 }, { 0, 0, 1 }, 2 },
+	{ "X up", { 255, 3, 10 }, { -1, 0, 0 }, 0 },
+	{ "X down", { -262, 3, 10 }, { 1, 0, 0 }, 0 },
+	{ "Y up", { 2, 261, 10 }, { 0, -1, 0 }, 1 },
+	{ "Y down", { 2, -259, 10 }, { 0, 1, 0 }, 1 },
+};
+
+static void check_posture(const struct as9888_posture_case *c)
+{
+	const s32 st[AS9888_AXES] = { Q16(256), Q16(256), Q16(256) };
+	s32 a[AS9888_AXES];
+	s8 g[AS9888_AXES];
+	int axis;
+
+	for (axis = 0; axis < AS9888_AXES; axis++)
+		a[axis] = Q16(c->a[axis]);
+	assert_int_equal(as9888_posture_detect(a, g), c->vertical);
+	assert_int_equal(memcmp(g, c->g, sizeof(g)), 0);
+	assert_int_equal(as9888_posture_check(a, st, g), AS9888_POSTURE_OK);
+}
+
+static void kunit_posture(void **state)
+{
+	const struct as9888_posture_case *c;
+
+	for (c = as9888_posture_cases; c < as9888_posture_cases + ARRAY_SIZE(as9888_posture_cases);
+	     c++)
+		check_posture(c);
+}
+
+static void kunit_posture_failures(void **state)
+{
+	const s32 st[AS9888_AXES] = { Q16(256), Q16(256), Q16(256) };
+	s32 tilted[AS9888_AXES] = { Q16(129), 0, Q16(221) };
+	const s32 weak[AS9888_AXES] = { 0, 0, Q16(127) };
+	const s32 level[AS9888_AXES] = { 0, 0, Q16(256) };
+	static const s8 up_wrong[AS9888_AXES] = { 0, 0, 1 };
+	static const s8 two_axes[AS9888_AXES] = { 0, -1, -1 };
+	static const s8 none[AS9888_AXES] = { 0, 0, 0 };
+	static const s8 two[AS9888_AXES] = { 0, 0, 2 };
+	s8 g[AS9888_AXES];
+
+	as9888_posture_detect(tilted, g);
+	assert_int_equal(as9888_posture_check(tilted, st, g),
+			AS9888_POSTURE_NOT_LEVEL);
+	tilted[0] = Q16(128);	/* exactly half: still level */
+	assert_int_equal(as9888_posture_check(tilted, st, g),
+			AS9888_POSTURE_OK);
+	as9888_posture_detect(weak, g);
+	assert_int_equal(as9888_posture_check(weak, st, g),
+			AS9888_POSTURE_NOT_VERTICAL);
+	assert_int_equal(as9888_posture_check(level, st, up_wrong),
+			AS9888_POSTURE_WRONG_SIGN);
+	assert_int_equal(as9888_posture_check(level, st, two_axes),
+			AS9888_POSTURE_BAD_G);
+	assert_int_equal(as9888_posture_check(level, st, none),
+			AS9888_POSTURE_BAD_G);
+	assert_int_equal(as9888_posture_check(level, st, two),
+			AS9888_POSTURE_BAD_G);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -597,6 +954,18 @@ int main(void)
 		cmocka_unit_test(posture),
 		cmocka_unit_test(posture_failures),
 		cmocka_unit_test(rounding),
+		cmocka_unit_test(kunit_tmps_code),
+		cmocka_unit_test(kunit_temperature_rounding),
+		cmocka_unit_test(kunit_offset_level),
+		cmocka_unit_test(kunit_accel),
+		cmocka_unit_test(kunit_uncompensate),
+		cmocka_unit_test(kunit_cal_from_level),
+		cmocka_unit_test(kunit_mean),
+		cmocka_unit_test(kunit_dac_opt),
+		cmocka_unit_test(kunit_accel_judgments),
+		cmocka_unit_test(kunit_samples),
+		cmocka_unit_test(kunit_posture),
+		cmocka_unit_test(kunit_posture_failures),
 	};
 
 	return cmocka_run_group_tests_name("calib", tests, NULL, NULL);

@@ -4,6 +4,7 @@
 #define AS9888_SHIM_LINUX_KERNEL_H
 
 #include_next <linux/kernel.h>
+#include <linux/limits.h>
 #include <linux/types.h>
 
 #define ARRAY_SIZE(a)	(sizeof(a) / sizeof((a)[0]))
@@ -11,16 +12,6 @@
 /* Like the kernel's abs(): works on any signed integer type. */
 #define abs(x) ({ __typeof__(x) __x = (x); __x < 0 ? -__x : __x; })
 
-#define U8_MAX		((u8)~0U)
-#define S16_MAX		((s16)(U16_MAX >> 1))
-#define S16_MIN		((s16)(-S16_MAX - 1))
-#define U16_MAX		((u16)~0U)
-#define S32_MAX		((s32)(U32_MAX >> 1))
-#define S32_MIN		((s32)(-S32_MAX - 1))
-#define U32_MAX		((u32)~0U)
-#define S64_MAX		((s64)(U64_MAX >> 1))
-#define S64_MIN		((s64)(-S64_MAX - 1))
-#define U64_MAX		((u64)~0ULL)
 
 #define min(a, b)	((a) < (b) ? (a) : (b))
 #define max(a, b)	((a) > (b) ? (a) : (b))

@@ -13,10 +13,10 @@
 #include <linux/bits.h>
 #include <linux/build_bug.h>
 #include <linux/compiler.h>
+#include <linux/stddef.h>
 #include <linux/types.h>
 
 #include "as9888_calib.h"
-#include "as9888_compat.h"
 #include "as9888_regs.h"
 
 struct device;
@@ -48,6 +48,16 @@ struct as9888_raw_sample {
 	u8 st2;
 } __packed;
 static_assert(sizeof(struct as9888_raw_sample) == AS9888_SAMPLE_LEN);
+static_assert(offsetof(struct as9888_raw_sample, magn) ==
+	      AS9888_REG_HXL - AS9888_REG_ST1);
+static_assert(offsetof(struct as9888_raw_sample, tmps) ==
+	      AS9888_REG_TMPS - AS9888_REG_ST1);
+static_assert(offsetof(struct as9888_raw_sample, empt) ==
+	      AS9888_REG_EMPT - AS9888_REG_ST1);
+static_assert(offsetof(struct as9888_raw_sample, accel) ==
+	      AS9888_REG_A1XL - AS9888_REG_ST1);
+static_assert(offsetof(struct as9888_raw_sample, st2) ==
+	      AS9888_REG_ST2 - AS9888_REG_ST1);
 
 extern const struct regmap_config as9888_i2c_regmap_config;
 extern const struct regmap_config as9888_spi_regmap_config;

@@ -11,12 +11,17 @@
 #include <linux/bitfield.h>
 #include <linux/bitops.h>
 #include <linux/errno.h>
-#include <linux/kernel.h>
+#include <linux/export.h>
+#include <linux/limits.h>
+#include <linux/math.h>
 #include <linux/math64.h>
+#include <linux/minmax.h>
 #include <linux/module.h>
+#include <linux/types.h>
+
+#include <kunit/visibility.h>
 
 #include "as9888_calib.h"
-#include "as9888_compat.h"
 
 /*
  * Kste / 100 per degC in units of 1e-8: -0.428125 %/degC for index 0, then
@@ -31,11 +36,7 @@
 #define AS9888_ST_RT_MAX		(AS9888_ST_NOMINAL + 15)
 #define AS9888_KSTE_IDX_MAX		7
 #define AS9888_EHC_OFFSET		128
-#define AS9888_Q16_SHIFT		16
-/* DAC rounding: (gain + 16) / 2048 * Ot_L with Ot_L in Q16 */
-#define AS9888_DAC_GAIN_OFFSET		16
 #define AS9888_DAC_FULL_SCALE		2048
-#define AS9888_DAC_ROUND_SHIFT		27	/* log2(2048 * 65536) */
 /*
  * Kote = s9 * 1.5 / dT with dT = dTMPS / 1.6 degC, that is
  * s9 * 12 / (5 * dTMPS); the D4 fallback dT = 35 degC gives s9 * 3 / 70.
@@ -46,11 +47,12 @@
 #define AS9888_KOTE_FALLBACK_DEN	70
 #define AS9888_KOTE_NUM_MAX		(256 * AS9888_KOTE_NUM)
 #define AS9888_KOTE_DEN_MAX		(255 * AS9888_KOTE_DEN)
-#define AS9888_UG_PER_G			1000000
 #define AS9888_MICRO			1000000
-/* Largest sensitivity accepted by the estimators, LSB/g in Q16 */
-#define AS9888_ST_Q16_MAX		(1024 * AS9888_Q16_ONE)
-#define AS9888_ACC_MEAN_Q16_MAX		(32768LL * AS9888_Q16_ONE)
+/* EAxGA[7] is bit 8 of the 9-bit offset temperature property DT */
+#define AS9888_DT_SIGN_MSK		BIT(8)
+#define AS9888_DT_LOW_MSK		GENMASK(7, 0)
+/* Largest |micro| as9888_micro_to_q16() takes: 2^31 * 10^6 / 2^16 < 2^36 */
+#define AS9888_MICRO_ABS_MAX		BIT_ULL(36)
 
 /**
  * as9888_div_round_s64() - divide and round to nearest, ties to even
@@ -58,6 +60,8 @@
  * @den: divisor, must be > 0 (0 is returned otherwise)
  *
  * This is rint() of the exact quotient, as D5 asks for the DAC estimate.
+ *
+ * Return: the rounded quotient, or 0 when @den is not positive.
  */
 s64 as9888_div_round_s64(s64 num, s64 den)
 {
@@ -78,12 +82,7 @@ s64 as9888_div_round_s64(s64 num, s64 den)
 
 	return q;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_div_round_s64, AS9888_NS);
-
-static bool as9888_in_range(s64 value, s64 lo, s64 hi)
-{
-	return value >= lo && value <= hi;
-}
+EXPORT_SYMBOL_NS_GPL(as9888_div_round_s64, "IIO_AS9888");
 
 static bool as9888_t_valid(s32 t_mdegc)
 {
@@ -91,70 +90,32 @@ static bool as9888_t_valid(s32 t_mdegc)
 			       AS9888_CALIB_T_MAX_MDEGC);
 }
 
-bool as9888_tmps_valid(u8 tmps)
+VISIBLE_IF_KUNIT bool as9888_tmps_valid(u8 tmps)
 {
 	return tmps >= AS9888_TMPS_MIN && tmps <= AS9888_TMPS_MAX;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_tmps_valid, AS9888_NS);
+EXPORT_SYMBOL_IF_KUNIT(as9888_tmps_valid);
 
 /* T = (176 - TMPS) / 1.6 degC, exact in millidegrees */
 s32 as9888_tmps_to_mdegc(u8 tmps)
 {
 	return (AS9888_TMPS_ZERO_DEGC - (s32)tmps) * AS9888_MDEGC_PER_TMPS;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_tmps_to_mdegc, AS9888_NS);
-
-/**
- * as9888_mdegc_to_tmps() - the TMPS code the chip reports at a temperature
- * @t_mdegc: temperature, millidegrees Celsius
- *
- * Return: rint(176 - 1.6 * t), not limited to the valid code range.
- */
-int as9888_mdegc_to_tmps(s32 t_mdegc)
-{
-	return AS9888_TMPS_ZERO_DEGC -
-	       (int)as9888_div_round_s64(t_mdegc, AS9888_MDEGC_PER_TMPS);
-}
-EXPORT_SYMBOL_NS_GPL(as9888_mdegc_to_tmps, AS9888_NS);
-
-/**
- * as9888_tmps_mean_to_mdegc() - temperature of the mean of n TMPS codes
- * @tmps_sum: sum of the codes
- * @n: number of codes, 1..AS9888_SAMPLES_MAX
- * @t_mdegc: the temperature, rounded to the nearest millidegree
- *
- * Return: 0, -EINVAL for a bad @n, -ERANGE for a sum no codes can give.
- */
-int as9888_tmps_mean_to_mdegc(s64 tmps_sum, u32 n, s32 *t_mdegc)
-{
-	s64 num;
-
-	if (n == 0 || n > AS9888_SAMPLES_MAX)
-		return -EINVAL;
-	if (!as9888_in_range(tmps_sum, 0, (s64)U8_MAX * n))
-		return -ERANGE;
-
-	num = ((s64)AS9888_TMPS_ZERO_DEGC * n - tmps_sum) *
-	      AS9888_MDEGC_PER_TMPS;
-	*t_mdegc = (s32)as9888_div_round_s64(num, n);
-
-	return 0;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_tmps_mean_to_mdegc, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_tmps_to_mdegc, "IIO_AS9888");
 
 /* Magnetometer sensitivity adjustment: H * (EHC + 128) / 256, in Q8 */
 s32 as9888_mag_adjust_q8(s16 h, u8 ehc)
 {
 	return (s32)h * ((s32)ehc + AS9888_EHC_OFFSET);
 }
-EXPORT_SYMBOL_NS_GPL(as9888_mag_adjust_q8, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_mag_adjust_q8, "IIO_AS9888");
 
 /* Steps 2-7..2-12: -4096 and 4095 (or anything beyond) mean overflow */
 bool as9888_mag_overflow(s16 h)
 {
 	return h <= AS9888_MAG_MIN || h >= AS9888_MAG_MAX;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_mag_overflow, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_mag_overflow, "IIO_AS9888");
 
 /**
  * as9888_selftest_window_ok() - self-test window of steps 2-17..2-22
@@ -162,8 +123,10 @@ EXPORT_SYMBOL_NS_GPL(as9888_mag_overflow, AS9888_NS);
  * @adj_q8: the adjusted self-test reading of that axis, in 1/256 LSB
  *
  * Comparing in Q8 is exact.
+ *
+ * Return: true when @adj_q8 is inside the window of @axis.
  */
-bool as9888_selftest_window_ok(int axis, s32 adj_q8)
+VISIBLE_IF_KUNIT bool as9888_selftest_window_ok(int axis, s32 adj_q8)
 {
 	s32 lo, hi;
 
@@ -183,7 +146,7 @@ bool as9888_selftest_window_ok(int axis, s32 adj_q8)
 
 	return adj_q8 >= lo * AS9888_Q8_ONE && adj_q8 <= hi * AS9888_Q8_ONE;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_selftest_window_ok, AS9888_NS);
+EXPORT_SYMBOL_IF_KUNIT(as9888_selftest_window_ok);
 
 /**
  * as9888_selftest_ok() - self-test judgment of one axis, steps 2-17..2-22
@@ -192,13 +155,15 @@ EXPORT_SYMBOL_NS_GPL(as9888_selftest_window_ok, AS9888_NS);
  * @ehc: the axis' sensitivity adjustment from the EEPROM
  *
  * The reading must not overflow, and adjusted it must be in its window.
+ *
+ * Return: true when the axis passes.
  */
 bool as9888_selftest_ok(int axis, s16 h, u8 ehc)
 {
 	return !as9888_mag_overflow(h) &&
 	       as9888_selftest_window_ok(axis, as9888_mag_adjust_q8(h, ehc));
 }
-EXPORT_SYMBOL_NS_GPL(as9888_selftest_ok, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_selftest_ok, "IIO_AS9888");
 
 static bool as9888_trim_valid(const struct as9888_axis_trim *trim)
 {
@@ -219,8 +184,9 @@ static bool as9888_trim_valid(const struct as9888_axis_trim *trim)
  * Return: 0, -EINVAL for an invalid @trim, -ERANGE for a temperature out of
  * the accepted range.
  */
-int as9888_sensitivity_q16(const struct as9888_axis_trim *trim,
-			   s32 t_rt_mdegc, s32 t_mdegc, s32 *st_q16)
+VISIBLE_IF_KUNIT int
+as9888_sensitivity_q16(const struct as9888_axis_trim *trim, s32 t_rt_mdegc,
+		       s32 t_mdegc, s32 *st_q16)
 {
 	s64 kste_e8, factor;
 
@@ -238,31 +204,7 @@ int as9888_sensitivity_q16(const struct as9888_axis_trim *trim,
 
 	return 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_sensitivity_q16, AS9888_NS);
-
-/**
- * as9888_offset_level_q16() - Ot_L = A + St(t_L) * G for one axis
- * @a_mean_q16: mean raw level reading A, Q16
- * @st_level_q16: sensitivity at the level-test temperature, Q16
- * @g: the axis' component of the gravity direction, -1, 0 or 1
- * @ot_l_q16: the level-test offset, Q16
- *
- * Return: 0 or -EINVAL for inputs out of range.
- */
-int as9888_offset_level_q16(s32 a_mean_q16, s32 st_level_q16, int g,
-			    s32 *ot_l_q16)
-{
-	if (!as9888_in_range(a_mean_q16, -AS9888_ACC_MEAN_Q16_MAX,
-			     AS9888_ACC_MEAN_Q16_MAX) ||
-	    !as9888_in_range(st_level_q16, 0, AS9888_ST_Q16_MAX) ||
-	    !as9888_in_range(g, -1, 1))
-		return -EINVAL;
-
-	*ot_l_q16 = a_mean_q16 + st_level_q16 * g;
-
-	return 0;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_offset_level_q16, AS9888_NS);
+EXPORT_SYMBOL_IF_KUNIT(as9888_sensitivity_q16);
 
 /**
  * as9888_offset_q16() - Ot(t) = Kote * (t - t_L) + Ot_L for one axis
@@ -275,8 +217,9 @@ EXPORT_SYMBOL_NS_GPL(as9888_offset_level_q16, AS9888_NS);
  * Return: 0, -EINVAL for an invalid @trim, -ERANGE for a temperature out of
  * range or an offset that does not fit.
  */
-int as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
-		      s32 t_level_mdegc, s32 t_mdegc, s32 *ot_q16)
+VISIBLE_IF_KUNIT int
+as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
+		  s32 t_level_mdegc, s32 t_mdegc, s32 *ot_q16)
 {
 	s64 drift, ot;
 
@@ -298,35 +241,56 @@ int as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
 
 	return 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_offset_q16, AS9888_NS);
+EXPORT_SYMBOL_IF_KUNIT(as9888_offset_q16);
 
 /**
- * as9888_accel_ug() - compensated reading a = (raw - Ot(t)) / St(t)
- * @raw: raw accelerometer sample
- * @ot_q16: offset at the temperature of the sample, Q16
- * @st_q16: sensitivity at that temperature, Q16, > 0
- * @a_ug: the acceleration, micro-g
+ * as9888_dac2lin() - DAC register value to signed linear code (6.6)
+ * @ga: the axis' gain register value (bit 6 is the polarity)
+ * @da: the DAC register value
  *
- * Return: 0, -EINVAL for a sensitivity <= 0, -ERANGE when the result does
- * not fit.
+ * Return: the linear code, -67..67 for a valid @da.
  */
-int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug)
+int as9888_dac2lin(u8 ga, u8 da)
 {
-	s64 a;
+	int lin = da >= AS9888_DAC_ZERO ? da - AS9888_DAC_ZERO : -(int)da;
 
-	if (st_q16 <= 0)
-		return -EINVAL;
-
-	a = as9888_div_round_s64(((s64)raw * AS9888_Q16_ONE - ot_q16) *
-				 AS9888_UG_PER_G, st_q16);
-	if (!as9888_in_range(a, S32_MIN, S32_MAX))
-		return -ERANGE;
-
-	*a_ug = (s32)a;
-
-	return 0;
+	return ga & AS9888_GA_POLARITY_MSK ? -lin : lin;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_accel_ug, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_dac2lin, "IIO_AS9888");
+
+/**
+ * as9888_lin2dac() - signed linear code to DAC register value (6.6)
+ * @ga: the axis' gain register value (bit 6 is the polarity)
+ * @lin: linear code; values beyond +-AS9888_DAC_LIN_MAX are clamped
+ *
+ * Return: the DAC register value.
+ */
+u8 as9888_lin2dac(u8 ga, int lin)
+{
+	lin = clamp(lin, -AS9888_DAC_LIN_MAX, AS9888_DAC_LIN_MAX);
+	if (ga & AS9888_GA_POLARITY_MSK)
+		lin = -lin;
+
+	return lin >= 0 ? AS9888_DAC_ZERO + lin : -lin;
+}
+EXPORT_SYMBOL_NS_GPL(as9888_lin2dac, "IIO_AS9888");
+
+VISIBLE_IF_KUNIT bool as9888_dac_valid(u8 da)
+{
+	return da <= AS9888_DAC_NEG_MAX ||
+	       (da >= AS9888_DAC_ZERO && da <= AS9888_DAC_POS_MAX);
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_dac_valid);
+
+/* Output change per linear DAC code: 2048 / (GA[5:0] + 16) LSB, in Q16 */
+VISIBLE_IF_KUNIT s32 as9888_dac_step_q16(u8 ga)
+{
+	return (s32)as9888_div_round_s64((s64)AS9888_DAC_FULL_SCALE *
+					 AS9888_Q16_ONE,
+					 FIELD_GET(AS9888_GA_GAIN_MSK, ga) +
+					 AS9888_DAC_GAIN_OFFSET);
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_dac_step_q16);
 
 /**
  * as9888_offset_dac_shift_q16() - an offset as another DAC value gives it
@@ -343,8 +307,9 @@ EXPORT_SYMBOL_NS_GPL(as9888_accel_ug, AS9888_NS);
  * Return: 0, -EINVAL for an invalid DAC value, -ERANGE when the result
  * does not fit.
  */
-int as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim,
-				s32 ot_q16, u8 from_da, u8 to_da, s32 *out_q16)
+VISIBLE_IF_KUNIT int
+as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim, s32 ot_q16,
+			    u8 from_da, u8 to_da, s32 *out_q16)
 {
 	s64 out;
 
@@ -361,58 +326,7 @@ int as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim,
 
 	return 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_offset_dac_shift_q16, AS9888_NS);
-
-/**
- * as9888_accel_cal_from_level() - the calibration a level test gives
- * @ee: the decoded EEPROM
- * @a_mean_q16: mean raw level reading A per axis, Q16
- * @t_level_mdegc: the level-test temperature t_L
- * @g: the gravity direction during the level test
- * @da: the DAC register values the level test ran with
- * @cal: the calibration: Ot_L = A + St(t_L) * G per axis (6.5), referred
- *	 to the factory DAC values, at t_L
- *
- * Return: 0, -EINVAL or -ERANGE for inputs out of range.
- */
-int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
-				const s32 a_mean_q16[AS9888_AXES],
-				s32 t_level_mdegc, const s8 g[AS9888_AXES],
-				const u8 da[AS9888_AXES],
-				struct as9888_accel_cal *cal)
-{
-	s32 st_q16, ot_l_q16, ref_q16;
-	int axis, ret;
-
-	if (!as9888_in_range(t_level_mdegc, as9888_tmps_to_mdegc(AS9888_TMPS_MAX),
-			     as9888_tmps_to_mdegc(AS9888_TMPS_MIN)))
-		return -ERANGE;
-
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		const struct as9888_axis_trim *trim = &ee->axis[axis];
-
-		ret = as9888_sensitivity_q16(trim, ee->t_rt_mdegc,
-					     t_level_mdegc, &st_q16);
-		if (ret)
-			return ret;
-		ret = as9888_offset_level_q16(a_mean_q16[axis], st_q16, g[axis],
-					      &ot_l_q16);
-		if (ret)
-			return ret;
-		ret = as9888_offset_dac_shift_q16(trim, ot_l_q16, da[axis],
-						  trim->da, &ref_q16);
-		if (ret)
-			return ret;
-		if (!as9888_in_range(ref_q16, -AS9888_CAL_OFFSET_MAX_Q16,
-				     AS9888_CAL_OFFSET_MAX_Q16))
-			return -ERANGE;
-		cal->offset_q16[axis] = ref_q16;
-	}
-	cal->t_mdegc = t_level_mdegc;
-
-	return 0;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_accel_cal_from_level, AS9888_NS);
+EXPORT_SYMBOL_IF_KUNIT(as9888_offset_dac_shift_q16);
 
 /**
  * as9888_accel_correction() - offset and sensitivity of one axis now
@@ -453,7 +367,7 @@ int as9888_accel_correction(const struct as9888_eeprom *ee,
 
 	return as9888_sensitivity_q16(trim, ee->t_rt_mdegc, t_mdegc, st_q16);
 }
-EXPORT_SYMBOL_NS_GPL(as9888_accel_correction, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_accel_correction, "IIO_AS9888");
 
 /**
  * as9888_accel_compensate() - a raw reading on the constant output scale
@@ -484,42 +398,7 @@ int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out)
 	return as9888_in_range(a, AS9888_ACC_OUT_MIN, AS9888_ACC_OUT_MAX) ?
 	       0 : -ERANGE;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_accel_compensate, AS9888_NS);
-
-/**
- * as9888_accel_uncompensate() - the raw reading behind a compensated one
- * @out: a value of as9888_accel_compensate() that was not clamped
- * @ot_q16: the offset it was compensated with, Q16
- * @st_q16: the sensitivity it was compensated with, Q16, > 0
- * @raw: rint(out * St(t) / AS9888_ACC_OUT_PER_G + Ot(t))
- *
- * Exact inverse of as9888_accel_compensate() for every raw reading of the
- * chip while St(t) < AS9888_ACC_OUT_PER_G LSB/g: the output was rounded by
- * at most half a step, which is then less than half a raw LSB.
- *
- * Return: 0, -EINVAL for a sensitivity <= 0, -ERANGE for an output at a
- * limit (it may have been clamped) or a raw value the chip cannot give.
- */
-int as9888_accel_uncompensate(s16 out, s32 ot_q16, s32 st_q16, s16 *raw)
-{
-	s64 r;
-
-	if (!as9888_in_range(st_q16, 1, AS9888_ST_Q16_MAX))
-		return -EINVAL;
-	if (out <= AS9888_ACC_OUT_MIN || out >= AS9888_ACC_OUT_MAX)
-		return -ERANGE;
-
-	r = as9888_div_round_s64((s64)out * st_q16 +
-				 (s64)ot_q16 * AS9888_ACC_OUT_PER_G,
-				 (s64)AS9888_ACC_OUT_PER_G * AS9888_Q16_ONE);
-	if (!as9888_in_range(r, AS9888_ACC_MIN, AS9888_ACC_MAX))
-		return -ERANGE;
-
-	*raw = (s16)r;
-
-	return 0;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_accel_uncompensate, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_accel_compensate, "IIO_AS9888");
 
 /**
  * as9888_q16_to_micro() - a Q16 value in millionths, rounded to nearest
@@ -534,7 +413,7 @@ s64 as9888_q16_to_micro(s32 q16)
 {
 	return as9888_div_round_s64((s64)q16 * AS9888_MICRO, AS9888_Q16_ONE);
 }
-EXPORT_SYMBOL_NS_GPL(as9888_q16_to_micro, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_q16_to_micro, "IIO_AS9888");
 
 /**
  * as9888_micro_to_q16() - millionths to Q16, rounded to nearest
@@ -547,8 +426,9 @@ int as9888_micro_to_q16(s64 micro, s32 *q16)
 {
 	s64 q;
 
-	/* |micro| < 2^31 * 10^6 / 2^16 < 2^36 keeps the product in range */
-	if (!as9888_in_range(micro, -(1LL << 36), 1LL << 36))
+	/* |micro| <= 2^36 keeps the product in range */
+	if (!as9888_in_range(micro, -(s64)AS9888_MICRO_ABS_MAX,
+			     AS9888_MICRO_ABS_MAX))
 		return -ERANGE;
 
 	q = as9888_div_round_s64(micro * AS9888_Q16_ONE, AS9888_MICRO);
@@ -559,218 +439,7 @@ int as9888_micro_to_q16(s64 micro, s32 *q16)
 
 	return 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_micro_to_q16, AS9888_NS);
-
-/**
- * as9888_mean_q16() - mean of n s16 samples in Q16, rounded to nearest
- * @sum: sum of the samples
- * @n: number of samples, 1..AS9888_SAMPLES_MAX
- * @mean_q16: the mean
- *
- * Return: 0, -EINVAL for a bad @n, -ERANGE for a sum no s16 samples give.
- */
-int as9888_mean_q16(s64 sum, u32 n, s32 *mean_q16)
-{
-	if (n == 0 || n > AS9888_SAMPLES_MAX)
-		return -EINVAL;
-	if (!as9888_in_range(sum, (s64)S16_MIN * n, (s64)S16_MAX * n))
-		return -ERANGE;
-
-	*mean_q16 = (s32)as9888_div_round_s64(sum * AS9888_Q16_ONE, n);
-
-	return 0;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_mean_q16, AS9888_NS);
-
-/**
- * as9888_dac2lin() - DAC register value to signed linear code (6.6)
- * @ga: the axis' gain register value (bit 6 is the polarity)
- * @da: the DAC register value
- */
-int as9888_dac2lin(u8 ga, u8 da)
-{
-	int lin = da >= AS9888_DAC_ZERO ? da - AS9888_DAC_ZERO : -(int)da;
-
-	return ga & AS9888_GA_POLARITY_MSK ? -lin : lin;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_dac2lin, AS9888_NS);
-
-/**
- * as9888_lin2dac() - signed linear code to DAC register value (6.6)
- * @ga: the axis' gain register value (bit 6 is the polarity)
- * @lin: linear code; values beyond +-AS9888_DAC_LIN_MAX are clamped
- */
-u8 as9888_lin2dac(u8 ga, int lin)
-{
-	lin = clamp(lin, -AS9888_DAC_LIN_MAX, AS9888_DAC_LIN_MAX);
-	if (ga & AS9888_GA_POLARITY_MSK)
-		lin = -lin;
-
-	return lin >= 0 ? AS9888_DAC_ZERO + lin : -lin;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_lin2dac, AS9888_NS);
-
-bool as9888_dac_valid(u8 da)
-{
-	return da <= AS9888_DAC_NEG_MAX ||
-	       (da >= AS9888_DAC_ZERO && da <= AS9888_DAC_POS_MAX);
-}
-EXPORT_SYMBOL_NS_GPL(as9888_dac_valid, AS9888_NS);
-
-/* Output change per linear DAC code: 2048 / (GA[5:0] + 16) LSB, in Q16 */
-s32 as9888_dac_step_q16(u8 ga)
-{
-	return (s32)as9888_div_round_s64((s64)AS9888_DAC_FULL_SCALE *
-					 AS9888_Q16_ONE,
-					 FIELD_GET(AS9888_GA_GAIN_MSK, ga) +
-					 AS9888_DAC_GAIN_OFFSET);
-}
-EXPORT_SYMBOL_NS_GPL(as9888_dac_step_q16, AS9888_NS);
-
-/**
- * as9888_dac_opt() - the optimal DAC value of step 3-23 (6.6, D5, D6)
- * @ga: the gain register value AxGA
- * @da: the DAC register value ADA the level test ran with
- * @ee_gain: EAxGA[5:0]
- * @ot_l_q16: the level-test offset measured with @da, Q16
- * @da_opt: DACopt
- *
- * lin_opt = dac2lin(ga, da) - rint((ee_gain + 16) / 2048 * Ot_L), clamped
- * to the DAC range.
- *
- * Return: 0, or -ERANGE when lin_opt had to be clamped (D6: the function
- * test fails with "offset beyond DAC range"; @da_opt holds the clamped
- * value).
- */
-int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt)
-{
-	s64 shift, lin;
-
-	/* |(63 + 16) * Ot_L| < 2^38: exact, and the division is exact rint */
-	shift = as9888_div_round_s64(((s64)FIELD_GET(AS9888_GA_GAIN_MSK, ee_gain) +
-				      AS9888_DAC_GAIN_OFFSET) * ot_l_q16,
-				     1LL << AS9888_DAC_ROUND_SHIFT);
-	lin = as9888_dac2lin(ga, da) - shift;
-	*da_opt = as9888_lin2dac(ga, (int)clamp_t(s64, lin, -AS9888_DAC_LIN_MAX,
-						  AS9888_DAC_LIN_MAX));
-
-	return abs(lin) > AS9888_DAC_LIN_MAX ? -ERANGE : 0;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_dac_opt, AS9888_NS);
-
-/* Steps 3-14..3-19: -2048 and 2047 (or anything beyond) mean saturation */
-bool as9888_acc_saturated(s16 a)
-{
-	return a <= AS9888_ACC_MIN || a >= AS9888_ACC_MAX;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_acc_saturated, AS9888_NS);
-
-/* Steps 3-20..3-22: the spread of the averaged samples */
-bool as9888_fluctuation_ok(s16 min, s16 max, u32 limit)
-{
-	return max >= min && (u32)((s32)max - min) <= limit;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_fluctuation_ok, AS9888_NS);
-
-/**
- * as9888_samples_needed() - N >= n * (sigma / error)^2 (Note 2, D7)
- * @n: number of samples in each pilot average sigma was measured over
- * @sigma_q16: standard deviation of the n-sample averages, LSB in Q16
- * @error_q16: permissible error of the final average, LSB in Q16
- *
- * Return: the number of samples to average, at least AS9888_SAMPLES_MIN;
- * a value above AS9888_SAMPLES_MAX means the environment is too noisy
- * for the permissible error (also returned for @error_q16 == 0).
- */
-u32 as9888_samples_needed(u32 n, u32 sigma_q16, u32 error_q16)
-{
-	u64 var, err2, num, q;
-
-	if (error_q16 == 0)
-		return AS9888_SAMPLES_MAX + 1;
-	if (n == 0)
-		n = 1;
-
-	var = (u64)sigma_q16 * sigma_q16;
-	err2 = (u64)error_q16 * error_q16;
-	if (var > U64_MAX / n)
-		return AS9888_SAMPLES_MAX + 1;
-
-	num = var * n;
-	q = div64_u64(num, err2);
-	if (q * err2 < num)
-		q++;
-
-	if (q > AS9888_SAMPLES_MAX)
-		return AS9888_SAMPLES_MAX + 1;
-
-	return max_t(u32, (u32)q, AS9888_SAMPLES_MIN);
-}
-EXPORT_SYMBOL_NS_GPL(as9888_samples_needed, AS9888_NS);
-
-/**
- * as9888_posture_detect() - gravity direction from a level reading (D8)
- * @a_mean_q16: mean raw reading per axis, Q16
- * @g: the gravity direction: the axis of largest |A|, opposite to A
- *
- * Return: the index of the vertical axis.
- */
-int as9888_posture_detect(const s32 a_mean_q16[AS9888_AXES],
-			  s8 g[AS9888_AXES])
-{
-	int axis, vertical = 0;
-
-	for (axis = 1; axis < AS9888_AXES; axis++)
-		if (abs((s64)a_mean_q16[axis]) > abs((s64)a_mean_q16[vertical]))
-			vertical = axis;
-
-	for (axis = 0; axis < AS9888_AXES; axis++)
-		g[axis] = 0;
-	g[vertical] = a_mean_q16[vertical] > 0 ? -1 : 1;
-
-	return vertical;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_posture_detect, AS9888_NS);
-
-/**
- * as9888_posture_check() - is the unit level with gravity along G? (D8)
- * @a_mean_q16: mean raw reading per axis, Q16
- * @st_q16: sensitivity per axis at the level-test temperature, Q16
- * @g: gravity direction, one axis at -1 or +1, the others 0
- *
- * A horizontal axis must read at most St/2, the vertical one at least St/2
- * against the direction of gravity.
- */
-enum as9888_posture_error
-as9888_posture_check(const s32 a_mean_q16[AS9888_AXES],
-		     const s32 st_q16[AS9888_AXES],
-		     const s8 g[AS9888_AXES])
-{
-	int axis, vertical = -1;
-
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		if (g[axis] == 0)
-			continue;
-		if ((g[axis] != 1 && g[axis] != -1) || vertical >= 0)
-			return AS9888_POSTURE_BAD_G;
-		vertical = axis;
-	}
-	if (vertical < 0)
-		return AS9888_POSTURE_BAD_G;
-
-	for (axis = 0; axis < AS9888_AXES; axis++)
-		if (axis != vertical &&
-		    2 * abs((s64)a_mean_q16[axis]) > (s64)st_q16[axis])
-			return AS9888_POSTURE_NOT_LEVEL;
-
-	if ((s64)a_mean_q16[vertical] * g[vertical] > 0)
-		return AS9888_POSTURE_WRONG_SIGN;
-	if (2 * abs((s64)a_mean_q16[vertical]) < (s64)st_q16[vertical])
-		return AS9888_POSTURE_NOT_VERTICAL;
-
-	return AS9888_POSTURE_OK;
-}
-EXPORT_SYMBOL_NS_GPL(as9888_posture_check, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_micro_to_q16, "IIO_AS9888");
 
 static void as9888_decode_axis(const u8 *raw, int axis,
 			       struct as9888_axis_trim *trim)
@@ -786,8 +455,9 @@ static void as9888_decode_axis(const u8 *raw, int axis,
 	trim->st_rt = AS9888_ST_NOMINAL +
 		      sign_extend32(FIELD_GET(AS9888_EAGTD_DETAIL_MSK, eagtd), 4);
 	trim->kste_idx = FIELD_GET(AS9888_EAGTD_KSTE_MSK, eagtd);
-	dt9 = FIELD_GET(AS9888_EAGA_DT_SIGN_MSK, eaga) << 8 |
-	      raw[AS9888_EE_EADT(axis)];
+	dt9 = FIELD_PREP(AS9888_DT_SIGN_MSK,
+			 FIELD_GET(AS9888_EAGA_DT_SIGN_MSK, eaga)) |
+	      FIELD_PREP(AS9888_DT_LOW_MSK, raw[AS9888_EE_EADT(axis)]);
 	trim->dt = sign_extend32(dt9, 8);
 }
 
@@ -802,7 +472,8 @@ static void as9888_decode_axis(const u8 *raw, int axis,
  * Return: true when ET1/ET2 could not be used and the span of 35 degC of
  * D4 was taken instead.
  */
-bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num, s32 *kote_den)
+VISIBLE_IF_KUNIT bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num,
+				  s32 *kote_den)
 {
 	s32 dtmps = (s32)et1 - et2;
 	s32 delta_t = dtmps * AS9888_MDEGC_PER_TMPS;
@@ -822,7 +493,7 @@ bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num, s32 *kote_den)
 
 	return false;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_kote, AS9888_NS);
+EXPORT_SYMBOL_IF_KUNIT(as9888_kote);
 
 /* Kote of every axis, with the warnings of D4 and D9 */
 static void as9888_decode_kote(struct as9888_eeprom *ee)
@@ -906,7 +577,7 @@ int as9888_eeprom_decode(const u8 raw[AS9888_EEPROM_LEN],
 
 	return ee->errors ? -EINVAL : 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_eeprom_decode, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_eeprom_decode, "IIO_AS9888");
 
 /* as9888_ee_error_str() - what one enum as9888_ee_error bit means */
 const char *as9888_ee_error_str(u32 error_bit)
@@ -932,7 +603,7 @@ const char *as9888_ee_error_str(u32 error_bit)
 		return "unknown EEPROM error";
 	}
 }
-EXPORT_SYMBOL_NS_GPL(as9888_ee_error_str, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_ee_error_str, "IIO_AS9888");
 
 /* as9888_ee_warning_str() - what one enum as9888_ee_warning bit means */
 const char *as9888_ee_warning_str(u32 warning_bit)
@@ -950,7 +621,7 @@ const char *as9888_ee_warning_str(u32 warning_bit)
 		return "unknown EEPROM warning";
 	}
 }
-EXPORT_SYMBOL_NS_GPL(as9888_ee_warning_str, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_ee_warning_str, "IIO_AS9888");
 
 MODULE_DESCRIPTION("AS9888 calibration arithmetic");
 MODULE_LICENSE("GPL");

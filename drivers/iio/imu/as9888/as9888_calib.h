@@ -8,7 +8,8 @@
  * This unit is pure integer arithmetic. It builds in the kernel and, through
  * the small <linux/...> stand-ins under tools/include, in userspace; it calls
  * nothing but 64-bit division helpers and has no undefined behaviour for any
- * value of its inputs.
+ * value of its inputs. This header declares what the driver uses; the
+ * functions only its KUnit test calls are declared when KUnit is enabled.
  *
  * Fixed-point formats (the suffix of a name says which one it carries):
  *
@@ -82,8 +83,6 @@
 /* Raw sample limits */
 #define AS9888_MAG_MIN			(-4096)
 #define AS9888_MAG_MAX			4095
-#define AS9888_ACC_MIN			(-2048)
-#define AS9888_ACC_MAX			2047
 
 /* Adjusted magnetometer readings are in 1/256 LSB (Q8) */
 #define AS9888_Q8_ONE			256
@@ -94,16 +93,14 @@
 #define AS9888_SELFTEST_Z_MIN		300
 #define AS9888_SELFTEST_Z_MAX		1000
 
-/* Note 3: recommended fluctuation judgment (max - min), LSB */
-#define AS9888_FLUCTUATION_DEFAULT	15
-/* D7: at least this many samples are averaged */
-#define AS9888_SAMPLES_MIN		10
-/* Largest N the estimators and the record accept */
-#define AS9888_SAMPLES_MAX		4096
 /* D9: offset temperature slope beyond this (LSB/degC, x10) is a warning */
 #define AS9888_KOTE_WARN_X10		102
 
 #define AS9888_Q16_ONE			65536
+/* Largest sensitivity accepted by the estimators, LSB/g in Q16 */
+#define AS9888_ST_Q16_MAX		(1024 * AS9888_Q16_ONE)
+/* Output change per linear DAC code: 2048 / (GA[5:0] + 16) LSB */
+#define AS9888_DAC_GAIN_OFFSET		16
 
 /* Problems found while decoding the EEPROM (as9888_eeprom.errors) */
 enum as9888_ee_error {
@@ -184,26 +181,11 @@ const char *as9888_ee_warning_str(u32 warning_bit);
 
 /* Temperature */
 s32 as9888_tmps_to_mdegc(u8 tmps);
-int as9888_mdegc_to_tmps(s32 t_mdegc);
-int as9888_tmps_mean_to_mdegc(s64 tmps_sum, u32 n, s32 *t_mdegc);
-bool as9888_tmps_valid(u8 tmps);
 
 /* Magnetometer: H_adj = H * (EHC + 128) / 256, returned in 1/256 LSB */
 s32 as9888_mag_adjust_q8(s16 h, u8 ehc);
 bool as9888_mag_overflow(s16 h);
-bool as9888_selftest_window_ok(int axis, s32 adj_q8);
 bool as9888_selftest_ok(int axis, s16 h, u8 ehc);
-
-/* Accelerometer sensitivity and offset (section 6 of the datasheet) */
-int as9888_sensitivity_q16(const struct as9888_axis_trim *trim,
-			   s32 t_rt_mdegc, s32 t_mdegc, s32 *st_q16);
-bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num, s32 *kote_den);
-int as9888_offset_level_q16(s32 a_mean_q16, s32 st_level_q16, int g,
-			    s32 *ot_l_q16);
-int as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
-		      s32 t_level_mdegc, s32 t_mdegc, s32 *ot_q16);
-int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug);
-int as9888_mean_q16(s64 sum, u32 n, s32 *mean_q16);
 
 /*
  * Compensated accelerometer output (6.7 on a constant scale): what the
@@ -230,18 +212,10 @@ struct as9888_accel_cal {
 	s32 t_mdegc;
 };
 
-int as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim,
-				s32 ot_q16, u8 from_da, u8 to_da, s32 *out_q16);
-int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
-				const s32 a_mean_q16[AS9888_AXES],
-				s32 t_level_mdegc, const s8 g[AS9888_AXES],
-				const u8 da[AS9888_AXES],
-				struct as9888_accel_cal *cal);
 int as9888_accel_correction(const struct as9888_eeprom *ee,
 			    const struct as9888_accel_cal *cal, int axis,
 			    u8 da, s32 t_mdegc, s32 *ot_q16, s32 *st_q16);
 int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out);
-int as9888_accel_uncompensate(s16 out, s32 ot_q16, s32 st_q16, s16 *raw);
 
 /* Q16 values cross sysfs as decimals with six places, exactly */
 s64 as9888_q16_to_micro(s32 q16);
@@ -250,34 +224,28 @@ int as9888_micro_to_q16(s64 micro, s32 *q16);
 /* Offset DAC */
 int as9888_dac2lin(u8 ga, u8 da);
 u8 as9888_lin2dac(u8 ga, int lin);
-bool as9888_dac_valid(u8 da);
-s32 as9888_dac_step_q16(u8 ga);
-int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt);
-
-/* Judgments of the application note */
-bool as9888_acc_saturated(s16 a);
-bool as9888_fluctuation_ok(s16 min, s16 max, u32 limit);
-
-/* Note 2 / D7: number of samples to average */
-u32 as9888_samples_needed(u32 n, u32 sigma_q16, u32 error_q16);
-
-/* D8: posture detection */
-enum as9888_posture_error {
-	AS9888_POSTURE_OK = 0,
-	AS9888_POSTURE_NOT_LEVEL,	/* a horizontal axis reads > St/2 */
-	AS9888_POSTURE_NOT_VERTICAL,	/* the vertical axis reads < St/2 */
-	AS9888_POSTURE_WRONG_SIGN,	/* given G and the reading disagree */
-	AS9888_POSTURE_BAD_G,		/* G is not one axis, +1 or -1 */
-};
-
-int as9888_posture_detect(const s32 a_mean_q16[AS9888_AXES],
-			  s8 g[AS9888_AXES]);
-enum as9888_posture_error
-as9888_posture_check(const s32 a_mean_q16[AS9888_AXES],
-		     const s32 st_q16[AS9888_AXES],
-		     const s8 g[AS9888_AXES]);
 
 /* Rounding helper shared with the users of this unit */
 s64 as9888_div_round_s64(s64 num, s64 den);
+
+static inline bool as9888_in_range(s64 value, s64 lo, s64 hi)
+{
+	return value >= lo && value <= hi;
+}
+
+#if IS_ENABLED(CONFIG_KUNIT)
+/* Internal to as9888_calib.c, visible to its KUnit test */
+bool as9888_tmps_valid(u8 tmps);
+bool as9888_selftest_window_ok(int axis, s32 adj_q8);
+int as9888_sensitivity_q16(const struct as9888_axis_trim *trim,
+			   s32 t_rt_mdegc, s32 t_mdegc, s32 *st_q16);
+bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num, s32 *kote_den);
+int as9888_offset_q16(const struct as9888_axis_trim *trim, s32 ot_l_q16,
+		      s32 t_level_mdegc, s32 t_mdegc, s32 *ot_q16);
+int as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim,
+				s32 ot_q16, u8 from_da, u8 to_da, s32 *out_q16);
+bool as9888_dac_valid(u8 da);
+s32 as9888_dac_step_q16(u8 ga);
+#endif
 
 #endif /* AS9888_CALIB_H */

@@ -16,8 +16,10 @@
  * sits on one constant scale: consumers need nothing but raw and scale.
  */
 
+#include <linux/array_size.h>
 #include <linux/bitfield.h>
 #include <linux/bitmap.h>
+#include <linux/bits.h>
 #include <linux/cleanup.h>
 #include <linux/completion.h>
 #include <linux/ctype.h>
@@ -28,7 +30,7 @@
 #include <linux/gpio/consumer.h>
 #include <linux/interrupt.h>
 #include <linux/irq.h>
-#include <linux/kernel.h>
+#include <linux/kstrtox.h>
 #include <linux/ktime.h>
 #include <linux/math64.h>
 #include <linux/module.h>
@@ -43,6 +45,8 @@
 #include <linux/slab.h>
 #include <linux/string.h>
 #include <linux/sysfs.h>
+#include <linux/time64.h>
+#include <linux/types.h>
 #include <linux/wait.h>
 
 #include <linux/iio/buffer.h>
@@ -61,6 +65,11 @@
 /* A measurement that has not completed by 1.5 t + margin has failed */
 #define AS9888_MEAS_MARGIN_US		2000
 #define AS9888_MEAS_TIMEOUT_US(t)	((t) * 3 / 2 + AS9888_MEAS_MARGIN_US)
+/*
+ * RSTN low time: twice t_RSTL, so that a delay that ends a little early
+ * (udelay() is calibrated, not measured) still makes a valid pulse
+ */
+#define AS9888_RSTL_US			(2 * AS9888_T_RSTL_US)
 /* ST1 polling interval when no interrupt is wired */
 #define AS9888_POLL_US			100
 
@@ -289,12 +298,12 @@ static const struct reg_default as9888_reg_defaults[] = {
 	.precious_table = &as9888_precious_table,			\
 	.reg_defaults = as9888_reg_defaults,				\
 	.num_reg_defaults = ARRAY_SIZE(as9888_reg_defaults),		\
-	.cache_type = AS9888_REGCACHE
+	.cache_type = REGCACHE_MAPLE
 
 const struct regmap_config as9888_i2c_regmap_config = {
 	AS9888_REGMAP_CONFIG_COMMON,
 };
-EXPORT_SYMBOL_NS_GPL(as9888_i2c_regmap_config, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_i2c_regmap_config, "IIO_AS9888");
 
 /* SPI, datasheet section 1: bit 7 of the first byte set to read */
 const struct regmap_config as9888_spi_regmap_config = {
@@ -302,7 +311,7 @@ const struct regmap_config as9888_spi_regmap_config = {
 	.read_flag_mask = AS9888_SPI_READ_MSK,
 	.write_flag_mask = 0,
 };
-EXPORT_SYMBOL_NS_GPL(as9888_spi_regmap_config, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_spi_regmap_config, "IIO_AS9888");
 
 /* Modes and measurements; all of these run with data->lock held */
 
@@ -668,7 +677,7 @@ static int as9888_write_calibbias(struct iio_dev *indio_dev, int axis,
 	scoped_guard(mutex, &data->lock)
 		ret = as9888_set_calibbias(data, axis, lin);
 
-	as9888_pm_put(data->dev);
+	pm_runtime_put_autosuspend(data->dev);
 
 	return ret;
 }
@@ -695,7 +704,7 @@ static int as9888_read_channel(struct iio_dev *indio_dev,
 			ret = as9888_accel_out(data, &s, chan->address, &accel);
 	}
 
-	as9888_pm_put(data->dev);
+	pm_runtime_put_autosuspend(data->dev);
 	if (ret)
 		return ret;
 
@@ -753,10 +762,10 @@ static int as9888_read_raw(struct iio_dev *indio_dev,
 
 	switch (mask) {
 	case IIO_CHAN_INFO_RAW:
-		if (!as9888_claim_direct(indio_dev))
+		if (!iio_device_claim_direct(indio_dev))
 			return -EBUSY;
 		ret = as9888_read_channel(indio_dev, chan, val);
-		as9888_release_direct(indio_dev);
+		iio_device_release_direct(indio_dev);
 		return ret;
 	case IIO_CHAN_INFO_SCALE:
 		switch (chan->type) {
@@ -868,19 +877,19 @@ static int as9888_write_raw(struct iio_dev *indio_dev,
 
 	switch (mask) {
 	case IIO_CHAN_INFO_CALIBBIAS:
-		if (!as9888_claim_direct(indio_dev))
+		if (!iio_device_claim_direct(indio_dev))
 			return -EBUSY;
 		ret = as9888_write_calibbias(indio_dev, chan->address, val);
-		as9888_release_direct(indio_dev);
+		iio_device_release_direct(indio_dev);
 		return ret;
 	case IIO_CHAN_INFO_SAMP_FREQ:
 		return as9888_write_samp_freq(data, val);
 	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
 		/* The sample time changes: not while the buffer runs */
-		if (!as9888_claim_direct(indio_dev))
+		if (!iio_device_claim_direct(indio_dev))
 			return -EBUSY;
 		ret = as9888_write_oversampling(data, val);
-		as9888_release_direct(indio_dev);
+		iio_device_release_direct(indio_dev);
 		return ret;
 	default:
 		return -EINVAL;
@@ -1235,7 +1244,7 @@ static int as9888_selftest(struct iio_dev *indio_dev)
 		data->selftest = res;
 	}
 
-	as9888_pm_put(data->dev);
+	pm_runtime_put_autosuspend(data->dev);
 
 	return ret;
 }
@@ -1253,11 +1262,11 @@ static ssize_t selftest_store(struct device *dev, struct device_attribute *attr,
 	if (!run)
 		return -EINVAL;
 
-	if (!as9888_claim_direct(indio_dev))
+	if (!iio_device_claim_direct(indio_dev))
 		return -EBUSY;
 
 	ret = as9888_selftest(indio_dev);
-	as9888_release_direct(indio_dev);
+	iio_device_release_direct(indio_dev);
 
 	return ret ?: len;
 }
@@ -1346,12 +1355,41 @@ static int as9888_update_scan_mode(struct iio_dev *indio_dev,
 	return 0;
 }
 
+/*
+ * Register access for debugging (iio/iio:deviceX/direct_reg_access); it
+ * also makes the IIO core create the device's debugfs directory, which
+ * holds selftest_readings. Serialised with the driver's own sequences.
+ */
+static int as9888_debugfs_reg_access(struct iio_dev *indio_dev,
+				     unsigned int reg, unsigned int writeval,
+				     unsigned int *readval)
+{
+	struct as9888_data *data = iio_priv(indio_dev);
+	int ret;
+
+	ret = pm_runtime_resume_and_get(data->dev);
+	if (ret)
+		return ret;
+
+	scoped_guard(mutex, &data->lock) {
+		if (readval)
+			ret = regmap_read(data->regmap, reg, readval);
+		else
+			ret = regmap_write(data->regmap, reg, writeval);
+	}
+
+	pm_runtime_put_autosuspend(data->dev);
+
+	return ret;
+}
+
 static const struct iio_info as9888_info = {
 	.read_raw = as9888_read_raw,
 	.read_avail = as9888_read_avail,
 	.write_raw = as9888_write_raw,
 	.write_raw_get_fmt = as9888_write_raw_get_fmt,
 	.update_scan_mode = as9888_update_scan_mode,
+	.debugfs_reg_access = as9888_debugfs_reg_access,
 	.attrs = &as9888_attrs_group,
 };
 
@@ -1465,8 +1503,8 @@ static irqreturn_t as9888_trigger_handler(int irq, void *p)
 					     data->buf_men, &s, &ts);
 
 		if (!ret && as9888_fill_scan(data, &s))
-			as9888_push_to_buffers_with_ts(indio_dev, &data->scan,
-						       sizeof(data->scan), ts);
+			iio_push_to_buffers_with_ts(indio_dev, &data->scan,
+						    sizeof(data->scan), ts);
 	}
 
 	/* Before the next sample, whose INT1 edge must find it done */
@@ -1540,7 +1578,7 @@ static int as9888_buffer_postdisable(struct iio_dev *indio_dev)
 {
 	struct as9888_data *data = iio_priv(indio_dev);
 
-	as9888_pm_put(data->dev);
+	pm_runtime_put_autosuspend(data->dev);
 
 	return 0;
 }
@@ -1707,7 +1745,7 @@ static int as9888_reset(struct as9888_data *data)
 	if (!reset)
 		return 0;
 
-	fsleep(AS9888_T_RSTL_US);
+	fsleep(AS9888_RSTL_US);
 	gpiod_set_value_cansleep(reset, 0);
 	fsleep(AS9888_T_BOOT_US);
 	data->pd_since = ktime_get();
@@ -1947,7 +1985,7 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 
 	return 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_core_probe, AS9888_NS);
+EXPORT_SYMBOL_NS_GPL(as9888_core_probe, "IIO_AS9888");
 
 /* Power management */
 
@@ -2027,12 +2065,11 @@ static int as9888_resume(struct device *dev)
 	return as9888_trig_start(data);
 }
 
-const struct dev_pm_ops as9888_pm_ops = {
+EXPORT_NS_GPL_DEV_PM_OPS(as9888_pm_ops, IIO_AS9888) = {
 	SYSTEM_SLEEP_PM_OPS(as9888_suspend, as9888_resume)
 	RUNTIME_PM_OPS(as9888_runtime_suspend, as9888_runtime_resume, NULL)
 };
-EXPORT_SYMBOL_NS_GPL(as9888_pm_ops, AS9888_NS);
 
 MODULE_DESCRIPTION("ALSEN AS9888 accelerometer/magnetometer core driver");
 MODULE_LICENSE("GPL");
-MODULE_IMPORT_NS(AS9888_NS);
+MODULE_IMPORT_NS("IIO_AS9888");

@@ -45,11 +45,11 @@ static struct i2c_driver as9888_i2c_driver = {
 		.of_match_table = as9888_i2c_of_match,
 		.pm = pm_ptr(&as9888_pm_ops),
 	},
-	AS9888_I2C_PROBE(as9888_i2c_probe),
+	.probe = as9888_i2c_probe,
 	.id_table = as9888_i2c_id,
 };
 module_i2c_driver(as9888_i2c_driver);
 
 MODULE_DESCRIPTION("ALSEN AS9888 accelerometer/magnetometer I2C driver");
 MODULE_LICENSE("GPL");
-MODULE_IMPORT_NS(AS9888_NS);
+MODULE_IMPORT_NS("IIO_AS9888");

@@ -2,9 +2,9 @@
 /*
  * ALSEN AS9888 6-axis sensor: SPI driver.
  *
- * Mode 3, up to 5 MHz, 4-wire. The first byte carries the register
- * address in bits 6:0 and the direction in bit 7 (set: read, clear:
- * write); the address auto-increments on bursts.
+ * Mode 3 (described by firmware), up to 5 MHz, 4-wire. The first byte
+ * carries the register address in bits 6:0 and the direction in bit 7
+ * (set: read, clear: write); the address auto-increments on bursts.
  */
 
 #include <linux/err.h>
@@ -21,13 +21,17 @@ static int as9888_spi_probe(struct spi_device *spi)
 	struct regmap *regmap;
 	int ret;
 
-	/* Datasheet section 1: mode 3, at most 5 MHz */
-	spi->mode = (spi->mode & ~SPI_MODE_X_MASK) | SPI_MODE_3;
-	if (!spi->max_speed_hz || spi->max_speed_hz > AS9888_SPI_MAX_HZ)
+	/*
+	 * Datasheet section 1: at most 5 MHz. The mode (3) is the firmware's
+	 * to describe (spi-cpol, spi-cpha); only the clock is capped here.
+	 */
+	if (spi->max_speed_hz > AS9888_SPI_MAX_HZ) {
 		spi->max_speed_hz = AS9888_SPI_MAX_HZ;
-	ret = spi_setup(spi);
-	if (ret)
-		return dev_err_probe(&spi->dev, ret, "cannot set up SPI\n");
+		ret = spi_setup(spi);
+		if (ret)
+			return dev_err_probe(&spi->dev, ret,
+					     "cannot set up SPI\n");
+	}
 
 	regmap = devm_regmap_init_spi(spi, &as9888_spi_regmap_config);
 	if (IS_ERR(regmap))
@@ -62,4 +66,4 @@ module_spi_driver(as9888_spi_driver);
 
 MODULE_DESCRIPTION("ALSEN AS9888 accelerometer/magnetometer SPI driver");
 MODULE_LICENSE("GPL");
-MODULE_IMPORT_NS(AS9888_NS);
+MODULE_IMPORT_NS("IIO_AS9888");

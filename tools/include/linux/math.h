@@ -1,0 +1,8 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/* Userspace stand-in for <linux/math.h>: defined with the rest in <linux/kernel.h>. */
+#ifndef AS9888_SHIM_LINUX_MATH_H
+#define AS9888_SHIM_LINUX_MATH_H
+
+#include <linux/kernel.h>
+
+#endif
