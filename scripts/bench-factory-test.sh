@@ -7,12 +7,13 @@
 # t_BOOT, t_EEP, t_PD, t_MAG, t_ACC) and the I2C bit counts at 400 kHz of
 # its transfers, not from our own sequence. The floor's sequence: reset;
 # WIA; MS = EEPROM, t_EEP, the 21 EEPROM bytes; MS = 0, t_PD, the 10 trims
-# in one write; INT1EN, SLCT2; the magnetometer measurement (INT1ST and
-# ST1..ST2 read) and the self-test (ST1..ST2); SLCT2; N1 accelerometer
-# measurements (MS write, t_ACC, ST1 and TMPS..ST2: the cheaper of one
-# 16-byte burst and two reads without the magnetometer bytes, each next
-# measurement no earlier than t_PD after the last); the 3 DAC bytes; N
-# measurements again. INT1 is monitored (no polling). The checks the
+# in one write; INT1EN, SLCT2; the magnetometer measurement (INT1ST, and
+# ST1, HXL..HZH, ST2) and the self-test (ST1, HXL..HZH, ST2); SLCT2; N1
+# accelerometer measurements (MS write, t_ACC, ST1, TMPS, EMPT, A1XL..A1ZH,
+# ST2, each next measurement no earlier than t_PD after the last); the 3
+# DAC bytes; N measurements again. The registers of a sample are read the
+# cheaper way: one 16-byte burst of ST1..ST2, or only those the note reads
+# (two transactions). INT1 is monitored (no polling). The checks the
 # project adds (D10/D2 read-backs, D11 pin checks) are ours, not the
 # note's, and are not in the floor. N1 = N, or with --permissible-error
 # max(N, 32): the 32-sample pilot that measures sigma (Note 2) is the
@@ -40,10 +41,11 @@ floor() {
 	function max(a, b) { return a > b ? a : b }
 	BEGIN {
 		sample = r(1) + r(9) < r(16) ? r(1) + r(9) : r(16)
+		msample = r(7) + r(1) < r(16) ? r(7) + r(1) : r(16)
 		t = rstl + boot + r(1) + w(1) + eep + r(21) + w(1) + pd + w(10)
 		t += w(1) + w(1)					# INT1EN, SLCT2
-		t += w(1) + mag + r(1) + r(16)				# 2-3..2-13
-		t += max(pd - r(1) - r(16), 0) + w(1) + mag + r(16)	# 2-14..2-23
+		t += w(1) + mag + r(1) + msample			# 2-3..2-13
+		t += max(pd - r(1) - msample, 0) + w(1) + mag + msample	# 2-14..2-23
 		t += w(1)						# 3-1
 		t += n1 * (w(1) + acc) + (n1 - 1) * max(pd, sample) + sample
 		t += w(3) + max(pd - sample - w(3), 0)			# 3-24..3-26

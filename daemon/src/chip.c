@@ -138,12 +138,31 @@ static int16_t le16(const uint8_t *p)
 	return (int16_t)(uint16_t)(p[0] | p[1] << 8);
 }
 
-int chip_read_sample(struct chip *c, struct chip_sample *s)
+/*
+ * The registers the application note reads for a sample, no more: ST1,
+ * then the magnetometer data (step 2) or TMPS, EMPT and the accelerometer
+ * data (step 3), then ST2; the bytes between that it does not read are
+ * skipped (one more transaction, fewer bus bits)
+ */
+int chip_read_sample(struct chip *c, bool men, struct chip_sample *s)
 {
 	uint8_t buf[AS9888_SAMPLE_LEN];
 	int axis, ret;
 
-	ret = transport_read(c->t, AS9888_REG_ST1, buf, sizeof(buf));
+	memset(buf, 0, sizeof(buf));
+	if (men) {
+		ret = transport_read(c->t, AS9888_REG_ST1, buf,
+				     AS9888_REG_HXL + 6 - AS9888_REG_ST1);
+		if (!ret)
+			ret = transport_read(c->t, AS9888_REG_ST2,
+					     &buf[AS9888_REG_ST2 - AS9888_REG_ST1], 1);
+	} else {
+		ret = transport_read(c->t, AS9888_REG_ST1, buf, 1);
+		if (!ret)
+			ret = transport_read(c->t, AS9888_REG_TMPS,
+					     &buf[AS9888_REG_TMPS - AS9888_REG_ST1],
+					     AS9888_REG_ST2 - AS9888_REG_TMPS + 1);
+	}
 	if (ret)
 		return ret;
 
@@ -155,28 +174,6 @@ int chip_read_sample(struct chip *c, struct chip_sample *s)
 	s->tmps = buf[AS9888_REG_TMPS - AS9888_REG_ST1];
 	s->empt = buf[AS9888_REG_EMPT - AS9888_REG_ST1];
 	s->st2 = buf[AS9888_REG_ST2 - AS9888_REG_ST1];
-
-	return 0;
-}
-
-int chip_read_accel_sample(struct chip *c, struct chip_sample *s)
-{
-	uint8_t buf[AS9888_REG_ST2 - AS9888_REG_TMPS + 1];
-	int axis, ret;
-
-	ret = transport_read(c->t, AS9888_REG_ST1, &s->st1, 1);
-	if (!ret)
-		ret = transport_read(c->t, AS9888_REG_TMPS, buf, sizeof(buf));
-	if (ret)
-		return ret;
-
-	for (axis = 0; axis < CHIP_AXES; axis++) {
-		s->mag[axis] = 0;
-		s->acc[axis] = le16(&buf[AS9888_REG_A1XL - AS9888_REG_TMPS + 2 * axis]);
-	}
-	s->tmps = buf[0];
-	s->empt = buf[AS9888_REG_EMPT - AS9888_REG_TMPS];
-	s->st2 = buf[AS9888_REG_ST2 - AS9888_REG_TMPS];
 
 	return 0;
 }

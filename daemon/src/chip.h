@@ -31,7 +31,7 @@ struct chip {
 	bool int1_dr;
 };
 
-/* One burst of ST1..ST2, decoded */
+/* A sample's registers ST1..ST2, decoded */
 struct chip_sample {
 	uint8_t st1;
 	int16_t mag[CHIP_AXES];
@@ -56,12 +56,12 @@ int chip_set_mode(struct chip *c, uint8_t ms);
 /* Start @ms (single or self-test) and wait for its end; see enum chip_wait */
 int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
 		 enum chip_wait *how);
-int chip_read_sample(struct chip *c, struct chip_sample *s);
 /*
- * The same with the magnetometer off (SLCT2 MEN = 0): ST1, then TMPS..ST2
- * without the 6 magnetometer bytes between them (s->mag reads 0)
+ * Read a finished measurement: with @men (step 2) ST1, the magnetometer
+ * data and ST2; without (step 3) ST1, then TMPS..ST2. What is not read
+ * reads 0.
  */
-int chip_read_accel_sample(struct chip *c, struct chip_sample *s);
+int chip_read_sample(struct chip *c, bool men, struct chip_sample *s);
 /* The datasheet time of a measurement with these SLCT2 settings */
 uint64_t chip_measure_time_us(bool men, bool alpf);
 

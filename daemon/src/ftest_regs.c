@@ -190,7 +190,7 @@ static int measure(struct ftest_ctx *x, uint8_t ms, bool men,
 	if (int1 && how == CHIP_WAIT_DRDY)
 		c->use_int1 = false;
 
-	ret = men ? chip_read_sample(c, s) : chip_read_accel_sample(c, s);
+	ret = chip_read_sample(c, men, s);
 	if (ret)
 		return ftest_io_failed(x, step, "sample read", ret);
 

@@ -9,11 +9,11 @@
  * AS9888_REPORT_DIR set, each run's JSON report is written there (for
  * tests/daemon/report.sh, which validates them against the schema).
  *
- * Sample bursts are numbered from 0: burst 0 is the magnetometer
- * measurement of step 2, burst 1 the self-test (each one 16-byte read of
- * ST1..ST2), bursts 2..11 the first level run (N = 10), bursts 12..21 the
- * second (each a read of ST1, then one of TMPS..ST2: the magnetometer is
- * off in step 3).
+ * Sample bursts (the reads of one sample, ST1 first, ST2 last) are
+ * numbered from 0: burst 0 is the magnetometer measurement of step 2,
+ * burst 1 the self-test (ST1..HZH, then ST2), bursts 2..11 the first level
+ * run (N = 10), bursts 12..21 the second (ST1, then TMPS..ST2: the
+ * magnetometer is off in step 3).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -58,6 +58,7 @@ struct tamper {
 	/* what the test sent: INT1EN writes, reads of magnetometer data, the last write */
 	int int1en_writes;
 	int mag_reads;
+	int accel_reads;
 	int transfers;
 	uint8_t last_reg, last_val;
 };
@@ -81,18 +82,19 @@ static int tamper_read(struct transport *t, uint8_t reg, uint8_t *buf,
 	x->transfers++;
 	if (reg <= AS9888_REG_HXL + 5 && reg + len > AS9888_REG_HXL)
 		x->mag_reads++;
+	if (reg <= AS9888_REG_A1XL + 5 && reg + len > AS9888_REG_A1XL)
+		x->accel_reads++;
 
 	if (r->reg >= reg && r->reg < reg + len) {
 		if (r->burst)
-			hit = (reg == AS9888_REG_ST1 || reg == AS9888_REG_TMPS) &&
+			hit = reg >= AS9888_REG_ST1 && reg <= AS9888_REG_ST2 &&
 			      x->bursts >= r->first &&
 			      (r->last == ANY || x->bursts <= r->last);
 		else
 			hit = ++x->covering_reads == r->nth;
 	}
-	/* a sample's last read ends its burst */
-	if ((reg == AS9888_REG_ST1 && len == AS9888_SAMPLE_LEN) ||
-	    (reg == AS9888_REG_TMPS && reg + len == AS9888_REG_ST2 + 1))
+	/* a sample's last read, the one of ST2, ends its burst */
+	if (reg <= AS9888_REG_ST2 && reg + len > AS9888_REG_ST2)
 		x->bursts++;
 	if (hit) {
 		buf[r->reg - reg] = (uint8_t)r->value;
@@ -358,12 +360,14 @@ static void untampered_unit_passes(void **state)
 	/*
 	 * No redundant transfer: INT1EN written for the RSTN check and in 2-1
 	 * only (not again in 3-1), magnetometer data read in step 2's two
-	 * bursts only (step 3 skips its 6 bytes), and no MS = 0 at the end
+	 * bursts only (step 3 skips its 6 bytes), accelerometer data only in
+	 * step 3 (2 x 10 reads, none in step 2), and no MS = 0 at the end
 	 * (the last single measurement left the chip in power-down); the
 	 * last write is the second level run's last MS = single
 	 */
 	assert_int_equal(last_run.int1en_writes, 2);
 	assert_int_equal(last_run.mag_reads, 2);
+	assert_int_equal(last_run.accel_reads, 2 * 10);
 	assert_int_equal(last_run.last_reg, AS9888_REG_MS);
 	assert_int_equal(last_run.last_val, AS9888_MS_SINGLE);
 	print_message("%d bus transfers in a passing run at N = 10\n",
