@@ -10,7 +10,7 @@
 
 #include "iio.h"
 #include "iio_value.h"
-#include "session.h"
+#include "record.h"
 
 const char *const iio_calibbias_attr[AS9888_AXES] = {
 	"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
@@ -169,28 +169,26 @@ int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 	return n == AS9888_EEPROM_LEN ? 0 : -EIO;
 }
 
-int iio_restore(const char *record_path, const char *dir)
+int iio_apply_checked(const char *dir, const struct calib_record *rec,
+		      const char *what)
 {
 	uint8_t eeprom[AS9888_EEPROM_LEN];
-	struct calib_record rec;
 	int ret;
 
-	if (session_load_record(record_path, &rec))
-		return -EINVAL;
 	ret = iio_read_eeprom(dir, eeprom);
 	if (ret) {
 		fprintf(stderr, "as9888-calibd: %s: cannot read the EEPROM: %s\n",
 			dir, strerror(-ret));
 		return ret;
 	}
-	if (memcmp(eeprom, rec.eeprom, AS9888_EEPROM_LEN)) {
+	if (memcmp(eeprom, rec->eeprom, AS9888_EEPROM_LEN)) {
 		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, %s is chip %016llx; nothing applied\n",
-			record_path, (unsigned long long)record_fingerprint(rec.eeprom),
+			what, (unsigned long long)record_fingerprint(rec->eeprom),
 			dir, (unsigned long long)record_fingerprint(eeprom));
 		return -ENODEV;
 	}
 
-	return iio_apply_record(dir, &rec);
+	return iio_apply_record(dir, rec);
 }
 
 /*

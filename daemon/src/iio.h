@@ -100,10 +100,12 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 int iio_apply_record(const char *dir, const struct calib_record *rec);
 
 /*
- * Apply the record at @record_path to the device at @dir: refuse it unless
- * the device's EEPROM equals the record's, then iio_apply_record().
- * Returns 0 or -errno; says why on stderr.
+ * Apply @rec (named @what in messages, e.g. its path) to the device at
+ * @dir: refuse it unless the device's EEPROM equals the record's, then
+ * iio_apply_record(). Returns 0 or -errno; says why on stderr. Loading the
+ * record is the command layer's (iio_restore() in session.c).
  */
-int iio_restore(const char *record_path, const char *dir);
+int iio_apply_checked(const char *dir, const struct calib_record *rec,
+		      const char *what);
 
 #endif

@@ -347,3 +347,19 @@ bool session_store_result(const struct cli_opts *o, struct ftest_result *res,
 
 	return ret == 0;
 }
+
+/*
+ * The command layer's restore through the driver: load the record at
+ * @record_path and apply it to the device at @dir (iio_apply_checked()).
+ * Here, not in iio.c, so that the driver's sysfs layer does not depend on
+ * the commands' record handling.
+ */
+int iio_restore(const char *record_path, const char *dir)
+{
+	struct calib_record rec;
+
+	if (session_load_record(record_path, &rec))
+		return -EINVAL;
+
+	return iio_apply_checked(dir, &rec, record_path);
+}

@@ -64,4 +64,10 @@ int session_activate_record(const struct cli_opts *o,
  */
 int session_lock(const char *path, unsigned int timeout_s);
 
+/*
+ * Apply the record at @record_path to the AS9888 IIO device at @dir: the
+ * chip must be the record's (EEPROM). 0 or -errno, said on stderr.
+ */
+int iio_restore(const char *record_path, const char *dir);
+
 #endif

@@ -21,6 +21,7 @@
 #include "fake_sysfs.h"
 #include "iio.h"
 #include "record.h"
+#include "session.h"
 #include "uevent.h"
 
 static void parse_iio_add(void **state)
