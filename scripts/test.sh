@@ -47,7 +47,7 @@ stage() {
 meson_suite() {
 	local dir=$build/asan
 	[ -f "$dir/build.ninja" ] ||
-		meson setup "$dir" "$top" -Db_sanitize=address,undefined \
+		meson setup "$dir" "$top" -Dwerror=true -Db_sanitize=address,undefined \
 			-Db_lundef=false >/dev/null || return 1
 	ninja -C "$dir" || return 1
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -67,7 +67,7 @@ meson_suite() {
 release_build() {
 	local dir=$build/release
 	[ -f "$dir/build.ninja" ] ||
-		meson setup "$dir" "$top" --buildtype=release >/dev/null || return 1
+		meson setup "$dir" "$top" -Dwerror=true --buildtype=release >/dev/null || return 1
 	ninja -C "$dir"
 }
 

@@ -1,0 +1,89 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# The package: a product build as a distribution or BSP makes it
+# (-Dsimulator=false -Dlibgpiod=disabled -Dtests=disabled, prefix /usr,
+# no werror), `meson install --destdir`, and the installed file list
+# compared with the expected one exactly; the paths substituted in the
+# units; the binary without the simulator and libgpiod (not linked, not
+# compiled in, and saying so when asked for them); then the full build's
+# own install list (the build dir the suite runs in). Output is TAP.
+#
+# Usage: install.sh SOURCE-DIR BUILD-DIR
+set -u
+
+src=$(realpath "${1:?usage: install.sh SOURCE-DIR BUILD-DIR}")
+full=$(realpath "${2:?usage: install.sh SOURCE-DIR BUILD-DIR}")
+work=$(mktemp -d /tmp/as9888-install-XXXXXX)
+trap 'rm -rf "$work"' EXIT
+# shellcheck source=../lib/tap.sh
+. "$src/tests/lib/tap.sh"
+TAP_SHOW="$work/log"
+
+expected_files() {	# PREFIX
+	sed "s|^|$1|" <<'EOF_LIST'
+/lib/systemd/system/as9888-calibd-restore@.service
+/lib/systemd/system/as9888-calibd.service
+/lib/systemd/system/as9888-calibd.socket
+/lib/tmpfiles.d/as9888-calibd.conf
+/lib/udev/rules.d/60-as9888-calibd.rules
+/sbin/as9888-calibd
+/share/doc/as9888-calibd/RECORD.md
+/share/doc/as9888-calibd/report.schema.json
+/share/man/man8/as9888-calibd.8
+EOF_LIST
+}
+installed_files() { (cd "$1" && find . -type f -o -type l | sed 's|^\.||' | LC_ALL=C sort); }
+
+# the product build: the options the Yocto recipe and Buildroot package use
+b=$work/build
+check "product build configures (no simulator, no libgpiod, no tests)" \
+	eval 'meson setup "$b" "$src" --prefix=/usr --sysconfdir=/etc --buildtype=release \
+		-Dsimulator=false -Dlibgpiod=disabled -Dtests=disabled >"$work/log" 2>&1'
+check "and builds" eval 'ninja -C "$b" >"$work/log" 2>&1'
+check "no cmocka, no test program, no simulator in it" \
+	eval '! grep -qi "dependency cmocka found: YES" "$b/meson-logs/meson-log.txt" &&
+	      [ -z "$(find "$b" -name "test_*" -type f)" ] &&
+	      [ ! -e "$b/daemon/sim" ]'
+check "meson install --destdir" \
+	eval 'DESTDIR="$work/root" meson install -C "$b" --no-rebuild >"$work/log" 2>&1'
+expected_files /usr | LC_ALL=C sort >"$work/expected"
+installed_files "$work/root" >"$work/installed"
+check "installed files are exactly the expected list" \
+	eval 'diff -u "$work/expected" "$work/installed" >"$work/log"'
+
+root=$work/root
+restore="$root/usr/lib/systemd/system/as9888-calibd-restore@.service"
+daemon="$root/usr/lib/systemd/system/as9888-calibd.service"
+check "units: configured paths, none left unsubstituted" \
+	eval 'grep -q "^ExecStart=/usr/sbin/as9888-calibd restore --backend iio --record /var/lib/as9888/calibration \$AS9888_CALIBD_RESTORE_OPTS$" "$restore" &&
+	      grep -q "^ExecStart=/usr/sbin/as9888-calibd daemon --backend iio" "$daemon" &&
+	      grep -q "^EnvironmentFile=-/etc/default/as9888-calibd$" "$daemon" &&
+	      ! grep -rq "@[a-z]*@" "$root/usr/lib"'
+check "tmpfiles.d: the state directory, root's own" \
+	grep -q "^d /var/lib/as9888 0755 root root -$" "$root/usr/lib/tmpfiles.d/as9888-calibd.conf"
+
+calibd=$root/usr/sbin/as9888-calibd
+check "the binary runs" eval '"$calibd" --help >"$work/log" 2>&1'
+check "not linked with libgpiod" eval '! ldd "$calibd" | grep -q gpiod'
+check "no simulator or libgpiod code in it" \
+	eval '! nm "$b/daemon/as9888-calibd" | grep -Eq " (as9888_sim_|as9888_model_|gpiod_)"'
+"$calibd" factory-test --backend sim --record "$work/rec" >"$work/out" 2>"$work/err"
+rc=$?
+check "--backend sim: fails and says it is built without the simulator" \
+	eval '[ $rc -ne 0 ] && grep -q "built without the simulator" "$work/err" && [ ! -e "$work/rec" ]'
+check "the raw backend's pins say they need libgpiod" \
+	grep -q "built without libgpiod" <(strings "$calibd")
+
+# the full build the suite runs in (simulator, libgpiod, tests): same list
+# under its own prefix
+prefix=$(meson introspect --buildoptions "$full" |
+	python3 -c 'import json, sys; print(next(o["value"] for o in json.load(sys.stdin) if o["name"] == "prefix"))')
+check "full build: meson install --destdir" \
+	eval 'DESTDIR="$work/root2" meson install -C "$full" --no-rebuild >"$work/log" 2>&1'
+expected_files "$prefix" | LC_ALL=C sort >"$work/expected2"
+installed_files "$work/root2" >"$work/installed2"
+check "full build: installed files are exactly the expected list (no test program)" \
+	eval 'diff -u "$work/expected2" "$work/installed2" >"$work/log"'
+
+tap_end
