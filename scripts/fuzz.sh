@@ -53,7 +53,7 @@ sources() {
 	record|record_crc) echo "$src/record.c ${calib[*]}" ;;
 	unit) echo "$top/tests/model/as9888_unit.c" ;;
 	request) echo "$src/request.c" ;;
-	uevent) echo "$src/uevent.c" ;;
+	uevent) echo "$src/uevent.c $src/uevent_filter.c" ;;
 	iio_scan) echo "$src/iio_scan.c" ;;
 	iio_value) echo "$src/iio_value.c ${calib[*]}" ;;
 	*) echo "fuzz: unknown target $1 (${all[*]})" >&2; return 1 ;;

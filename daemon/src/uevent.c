@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "uevent.h"
+#include "uevent_filter.h"
 
 /* The kernel's own multicast group (udev's is 2) */
 #define UEVENT_GROUP_KERNEL	1
@@ -83,7 +84,9 @@ int uevent_open(void)
 	if (fd < 0)
 		return -errno;
 	setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &size, sizeof(size));
-	if (bind(fd, (struct sockaddr *)&addr, sizeof(addr))) {
+	/* other subsystems' uevents dropped in the kernel: no wake-up */
+	if (uevent_filter_attach(fd) ||
+	    bind(fd, (struct sockaddr *)&addr, sizeof(addr))) {
 		int ret = -errno;
 
 		close(fd);
