@@ -36,10 +36,11 @@ EOF_LIST
 installed_files() { (cd "$1" && find . -type f -o -type l | sed 's|^\.||' | LC_ALL=C sort); }
 
 # the product build: the options the Yocto recipe and Buildroot package use
+product_flags="-Dsimulator=false -Dlibgpiod=disabled -Dtests=disabled"
 b=$work/build
 check "product build configures (no simulator, no libgpiod, no tests)" \
 	eval 'meson setup "$b" "$src" --prefix=/usr --sysconfdir=/etc --buildtype=release \
-		-Dsimulator=false -Dlibgpiod=disabled -Dtests=disabled >"$work/log" 2>&1'
+		$product_flags >"$work/log" 2>&1'
 check "and builds" eval 'ninja -C "$b" >"$work/log" 2>&1'
 check "no cmocka, no test program, no simulator in it" \
 	eval '! grep -qi "dependency cmocka found: YES" "$b/meson-logs/meson-log.txt" &&
@@ -74,6 +75,39 @@ check "--backend sim: fails and says it is built without the simulator" \
 	eval '[ $rc -ne 0 ] && grep -q "built without the simulator" "$work/err" && [ ! -e "$work/rec" ]'
 check "the raw backend's pins say they need libgpiod" \
 	grep -q "built without libgpiod" <(strings "$calibd")
+
+# the examples build with exactly these flags and sources
+check "Yocto recipe and Buildroot package: the product flags of this test" \
+	python3 - "$src/integration" $product_flags <<'PY'
+import re, sys
+top, want = sys.argv[1], set(sys.argv[2:])
+bb = open(top + "/yocto/as9888-calibd_0.1.0.bb").read()
+flags = set(re.search(r'^EXTRA_OEMESON = "([^"]*)"', bb, re.M).group(1).split())
+pc = re.search(r'^PACKAGECONFIG \?\?= "([^"]*)"', bb, re.M).group(1).split()
+for name, on, off in re.findall(r'^PACKAGECONFIG\[(\w+)\] = "([^,]*),([^,]*),', bb, re.M):
+    flags.add(on if name in pc else off)
+assert flags == want, ("yocto", flags ^ want)
+mk = open(top + "/buildroot/package/as9888-calibd/as9888-calibd.mk").read()
+flags = set(re.search(r"^AS9888_CALIBD_CONF_OPTS = (.*)$", mk, re.M).group(1).split())
+# without BR2_PACKAGE_LIBGPIOD: the else branch
+flags.add(re.search(r"^else\nAS9888_CALIBD_CONF_OPTS \+= (-Dlibgpiod=\S+)", mk, re.M).group(1))
+assert flags == want, ("buildroot", flags ^ want)
+PY
+check "Android.bp: the sources of the product build, no more, no less" \
+	python3 - "$src" "$b" <<'PY'
+import json, os, re, subprocess, sys
+src, b = sys.argv[1:]
+targets = json.loads(subprocess.run(["meson", "introspect", "--targets", b],
+    capture_output=True, check=True).stdout)
+built = set()
+for t in targets:
+    if t["name"] in ("as9888-calibd", "calibd", "as9888_calib"):
+        for s in t["target_sources"]:
+            built |= {os.path.relpath(f, src) for f in s["sources"]}
+bp = open(src + "/integration/android/Android.bp").read()
+listed = set(re.findall(r'"([\w/.-]+\.c)"', bp))
+assert built == listed, sorted(built ^ listed)
+PY
 
 # the full build the suite runs in (simulator, libgpiod, tests): same list
 # under its own prefix

@@ -1,0 +1,47 @@
+# SPDX-License-Identifier: GPL-2.0
+#
+# as9888-calibd for a Yocto/OpenEmbedded BSP layer: the calibration daemon,
+# its man page, the systemd units, the udev rule that restores the
+# calibration when the AS9888 IIO device appears, and the tmpfiles.d entry.
+# A product build: no simulator, no tests (no cmocka); libgpiod only for the
+# raw backend's pins (PACKAGECONFIG "gpiod", off by default).
+#
+# EXAMPLE, NOT BUILT HERE: no bitbake runs in this project's CI. What is
+# tested is the build with exactly these meson flags (tests/install/
+# install.sh checks that EXTRA_OEMESON below holds the flags it builds with).
+# Set AS9888_GIT_URI and SRCREV in your layer (or a .bbappend).
+
+SUMMARY = "ALSEN AS9888 factory test, accelerometer calibration and boot restore"
+HOMEPAGE = "${AS9888_GIT_URI}"
+LICENSE = "GPL-2.0-only"
+LIC_FILES_CHKSUM = "file://COPYING;md5=b234ee4d69f5fce4486a80fdaf4a4263"
+
+AS9888_GIT_URI ??= "git://git.example.com/as9888.git;protocol=https;branch=main"
+SRC_URI = "${AS9888_GIT_URI}"
+SRCREV ??= "${AUTOREV}"
+S = "${WORKDIR}/git"
+
+inherit meson pkgconfig systemd
+
+# the product flags (tests/install/install.sh builds with the same;
+# -Dlibgpiod=disabled comes from PACKAGECONFIG below)
+EXTRA_OEMESON = "-Dsimulator=false -Dtests=disabled"
+# the layout of the image
+EXTRA_OEMESON += "-Dsystemdsystemunitdir=${systemd_system_unitdir} \
+                  -Dudevrulesdir=${nonarch_base_libdir}/udev/rules.d \
+                  -Dtmpfilesdir=${nonarch_libdir}/tmpfiles.d \
+                  -Dsystemd=${@bb.utils.contains('DISTRO_FEATURES', 'systemd', 'true', 'false', d)}"
+
+PACKAGECONFIG ??= ""
+PACKAGECONFIG[gpiod] = "-Dlibgpiod=enabled,-Dlibgpiod=disabled,libgpiod"
+
+# the socket starts the daemon; the restore template is started by udev
+SYSTEMD_SERVICE:${PN} = "as9888-calibd.socket as9888-calibd.service"
+SYSTEMD_AUTO_ENABLE = "enable"
+
+FILES:${PN} += "${nonarch_base_libdir}/udev/rules.d \
+                ${nonarch_libdir}/tmpfiles.d \
+                ${systemd_system_unitdir}"
+
+# the kernel driver: as9888-mod_0.1.0.bb (or the driver in your kernel tree)
+RRECOMMENDS:${PN} += "kernel-module-as9888-i2c"
