@@ -177,8 +177,25 @@ wait "$trickler" 2>/dev/null
 
 # a stale socket (nobody listening) is replaced
 python3 -c "import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])" "$sock"
-start_daemon "$work/log3"
+start_daemon "$work/log3" --lock-timeout 5
+TAP_SHOW="$work/log3"
 check "a stale socket file is replaced" status_ok
-stopped || true
+
+# SIGTERM while a request runs (it waits for a held lock): the request
+# completes and its client gets its status, then the daemon stops
+exec python3 "$here/hostile_clients.py" "$rec.lock" lock 120 >"$work/holder" &
+holder=$!
+pids+=("$holder")
+for _ in $(seq 300); do grep -q held "$work/holder" && break; sleep 0.1; done
+timeout 100 "$calibd" request recalibrate --socket "$sock" >"$work/recal" 2>&1 &
+recal=$!
+for _ in $(seq 300); do grep -q "recalibrate requested" "$work/log3" && break; sleep 0.1; done
+check "SIGTERM during a request: the daemon stops within 60 s, exit 0" stopped 60
+wait "$recal"
+check "and the running request completed first, its client told its status" \
+	eval 'grep -q "^exit status 1$" "$work/recal" && grep -q "still held after 5 s" "$work/recal" &&
+	      grep -q "recalibrate done: exit status 1" "$work/log3"'
+kill "$holder" 2>/dev/null
+wait "$holder" 2>/dev/null
 
 tap_end
