@@ -20,8 +20,8 @@
 #define SESSION_LOCK_SUFFIX	".lock"
 
 /*
- * The users whose record files are believed: root's and our own, and the
- * group @state_group (NULL: none) may write them (storage_trust.h). Called
+ * Whose record files are believed when run as root: root's, which the
+ * group @state_group (NULL: none) may write too (storage_trust.h). Called
  * once, before any record is read or written. 0 or -errno, why in @err.
  */
 int session_trust_setup(const char *state_group, char *err, size_t errlen);

@@ -16,7 +16,7 @@ int storage_trust_init(struct storage_trust *t, const char *group_name,
 {
 	struct group *gr;
 
-	t->owner = geteuid();
+	t->enforce = geteuid() == 0;
 	t->group_allowed = false;
 	if (!group_name)
 		return 0;
@@ -40,10 +40,10 @@ static bool foreign_write(const struct storage_trust *t, const struct stat *st)
 	return st->st_mode & S_IWGRP && !(t->group_allowed && st->st_gid == t->group);
 }
 
-/* Root's files, and our own */
-static bool trusted_owner(const struct storage_trust *t, const struct stat *st)
+/* Root's files only */
+static bool trusted_owner(const struct stat *st)
 {
-	return st->st_uid == t->owner || st->st_uid == 0;
+	return st->st_uid == 0;
 }
 
 static int refuse(const struct storage_trust *t, const char *what,
@@ -51,10 +51,9 @@ static int refuse(const struct storage_trust *t, const char *what,
 {
 	unsigned int mode = st->st_mode & 07777, fixed = mode & ~(S_IWGRP | S_IWOTH);
 
-	if (!trusted_owner(t, st))
-		snprintf(err, errlen, "%s %s belongs to uid %u, not to root or uid %u who runs this: not trusted; if its content is right, chown %u %s",
-			 what, path, (unsigned int)st->st_uid, (unsigned int)t->owner,
-			 (unsigned int)t->owner, path);
+	if (!trusted_owner(st))
+		snprintf(err, errlen, "%s %s belongs to uid %u, not to root: not trusted; if its content is right, chown 0 %s",
+			 what, path, (unsigned int)st->st_uid, path);
 	else
 		snprintf(err, errlen, "%s %s is writable by %s (mode %04o): not trusted; chmod %04o %s%s",
 			 what, path, mode & S_IWOTH ? "everyone" : "its group", mode,
@@ -67,7 +66,9 @@ static int refuse(const struct storage_trust *t, const char *what,
 int storage_trust_file(const struct storage_trust *t, const char *path,
 		       const struct stat *st, char *err, size_t errlen)
 {
-	if (!trusted_owner(t, st) || foreign_write(t, st))
+	if (!t->enforce)
+		return 0;
+	if (!trusted_owner(st) || foreign_write(t, st))
 		return refuse(t, "file", path, st, err, errlen);
 
 	return 0;
@@ -79,6 +80,8 @@ int storage_trust_parent(const struct storage_trust *t, const char *path,
 	char copy[PATH_MAX], *dir;
 	struct stat st;
 
+	if (!t->enforce)
+		return 0;
 	if (snprintf(copy, sizeof(copy), "%s", path) >= (int)sizeof(copy)) {
 		snprintf(err, errlen, "path %s is too long", path);
 		return -ENAMETOOLONG;
@@ -98,7 +101,7 @@ int storage_trust_parent(const struct storage_trust *t, const char *path,
 		snprintf(err, errlen, "%s is not a directory", dir);
 		return -ENOTDIR;
 	}
-	if (!trusted_owner(t, &st) || foreign_write(t, &st))
+	if (!trusted_owner(&st) || foreign_write(t, &st))
 		return refuse(t, "directory", dir, &st, err, errlen);
 
 	return 0;

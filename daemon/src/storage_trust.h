@@ -5,7 +5,8 @@
  * (not owned by root, or writable by group or others) is refused, as is a
  * state directory that is a symbolic link. A group-writable one is
  * accepted when its group is the one the administrator named
- * (--state-group). Other users are trusted with what they own.
+ * (--state-group). Run as another user, a command can hurt only what that
+ * user may write anyway: nothing is checked.
  * Every refusal names the path and the fix.
  */
 #ifndef AS9888_STORAGE_TRUST_H
@@ -17,7 +18,7 @@
 #include <sys/types.h>
 
 struct storage_trust {
-	uid_t owner;		/* who must own the files: the effective user */
+	bool enforce;		/* run as root: the files must be root's */
 	bool group_allowed;	/* group write is fine for @group */
 	gid_t group;
 };
