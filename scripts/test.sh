@@ -16,7 +16,7 @@
 # Userspace: the Meson suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
 # conformance, simulator, factory test engine, record, save failure
-# injection), a bounded libFuzzer run of the record parser, the systemd
+# injection), a bounded libFuzzer run of every parser of outside data, the systemd
 # unit check, and a release build of the factory-test benchmark.
 set -uo pipefail
 
@@ -111,7 +111,7 @@ benchmark() {
 
 stage "setup" "$top/scripts/setup.sh"
 stage "meson test (ASan+UBSan)" meson_suite
-stage "fuzz record parser (60 s)" "$top/scripts/fuzz.sh" 60
+stage "fuzz the parsers (60 s shared by the targets)" "$top/scripts/fuzz.sh" 60
 stage "release build" release_build
 stage "gpio.c against libgpiod 2.x" "$top/scripts/libgpiod2-check.sh"
 stage "systemd units" "$top/scripts/check-units.sh" "$build/release/daemon/as9888-calibd"
