@@ -84,9 +84,12 @@ int uevent_open(void)
 	if (fd < 0)
 		return -errno;
 	setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &size, sizeof(size));
-	/* other subsystems' uevents dropped in the kernel: no wake-up */
-	if (uevent_filter_attach(fd) ||
-	    bind(fd, (struct sockaddr *)&addr, sizeof(addr))) {
+	/*
+	 * Other subsystems' uevents dropped in the kernel: no wake-up. Should
+	 * the kernel refuse the filter, every uevent wakes us, none is lost.
+	 */
+	(void)uevent_filter_attach(fd);
+	if (bind(fd, (struct sockaddr *)&addr, sizeof(addr))) {
 		int ret = -errno;
 
 		close(fd);

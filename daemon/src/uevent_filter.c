@@ -7,17 +7,20 @@
  * three default keys in this order). The header, NUL included, is H =
  * len(action) + len(devpath) + 2 bytes; the two keys after it take 15 + H
  * more, so "SUBSYSTEM=" starts at 2H + 15. Classic BPF has no loops: the
- * filter is unrolled over the first UEVENT_FILTER_SCAN bytes to find the
- * header's NUL at k (H = k + 1), loads X = 2k + 17 and compares the 14
- * bytes "SUBSYSTEM=iio\0" there.
+ * filter is unrolled over the first UEVENT_FILTER_SCAN bytes, a word at a
+ * time (a word holds a zero byte iff (v - 0x01010101) & ~v & 0x80808080 is
+ * not 0), then finds the header's NUL k in that word (H = k + 1), loads
+ * X = 2k + 17 and compares the 14 bytes "SUBSYSTEM=iio\0" there.
  *
  * It drops only what it has recognised as another subsystem's uevent: a
  * message whose key at that place is not SUBSYSTEM (another layout, a
  * header longer than the scan) is passed and left to uevent_parse(), so
- * no iio uevent is ever lost to it. A message with no NUL at all, or too
- * short for the key it claims, is dropped (an out-of-bounds load returns
- * 0): uevent_parse() would refuse it too. The socket only listens to the
- * kernel's group; udev's messages ("libudev" header) never reach it.
+ * no iio uevent is ever lost to it. A message that ends within the word of
+ * its header's NUL, with no NUL at all, or too short for the key it claims,
+ * is dropped (an out-of-bounds load returns 0): it carries no SUBSYSTEM
+ * and uevent_parse() would not find an appearance in it. The socket only
+ * listens to the kernel's group; udev's messages ("libudev" header) never
+ * reach it.
  */
 #include <errno.h>
 #include <sys/socket.h>
@@ -35,22 +38,55 @@
 size_t uevent_filter_build(struct sock_filter *prog)
 {
 	struct sock_filter *p = prog;
-	unsigned int k, check;
+	unsigned int k, locate, check, here;
 
-	/* the scan: 4 instructions per byte, then "keep" (no NUL in range) */
-	check = 4 * UEVENT_FILTER_SCAN + 1;
-	for (k = 0; k < UEVENT_FILTER_SCAN; k++) {
-		unsigned int here = (unsigned int)(p - prog);
-
-		*p++ = (struct sock_filter)BPF_STMT(BPF_LD | BPF_B | BPF_ABS, k);
-		*p++ = (struct sock_filter)BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, 0, 0, 2);
-		*p++ = (struct sock_filter)BPF_STMT(BPF_LDX | BPF_W | BPF_IMM,
-						    2 * k + 17);
+	/* the scan: 12 instructions per word, then "keep" (no NUL in range) */
+	locate = 12 * (UEVENT_FILTER_SCAN / 4) + 1;
+	for (k = 0; k < UEVENT_FILTER_SCAN; k += 4) {
+		here = (unsigned int)(p - prog);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_LD | BPF_W | BPF_ABS, k);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_MISC | BPF_TAX, 0);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_ALU | BPF_XOR | BPF_K, 0xffffffffU);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_ST, 0);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_MISC | BPF_TXA, 0);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_ALU | BPF_SUB | BPF_K, 0x01010101U);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_LDX | BPF_MEM, 0);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_ALU | BPF_AND | BPF_X, 0);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_ALU | BPF_AND | BPF_K, 0x80808080U);
+		/* no zero byte: the next word (skip the two below) */
+		*p++ = (struct sock_filter)BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, 0, 2, 0);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_LDX | BPF_W | BPF_IMM, k);
 		/* ja is relative to the next instruction */
 		*p++ = (struct sock_filter)BPF_STMT(BPF_JMP | BPF_JA,
-						    check - (here + 4));
+						    locate - (here + 12));
 	}
 	*p++ = (struct sock_filter)BPF_STMT(BPF_RET | BPF_K, KEEP);
+
+	/*
+	 * locate: X = k, the word's first byte; the NUL is at k + i, the
+	 * first zero byte of the word; then X = 2 (k + i) + 17
+	 */
+	*p++ = (struct sock_filter)BPF_STMT(BPF_LD | BPF_B | BPF_IND, 0);
+	*p++ = (struct sock_filter)BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, 0, 19, 0);
+	*p++ = (struct sock_filter)BPF_STMT(BPF_LD | BPF_B | BPF_IND, 1);
+	*p++ = (struct sock_filter)BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, 0, 12, 0);
+	*p++ = (struct sock_filter)BPF_STMT(BPF_LD | BPF_B | BPF_IND, 2);
+	*p++ = (struct sock_filter)BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, 0, 5, 0);
+	for (k = 3; ; k--) {	/* blocks for i = 3, 2, 1, 0 */
+		*p++ = (struct sock_filter)BPF_STMT(BPF_MISC | BPF_TXA, 0);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_ALU | BPF_LSH | BPF_K, 1);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_ALU | BPF_ADD | BPF_K, 2 * k + 17);
+		*p++ = (struct sock_filter)BPF_STMT(BPF_MISC | BPF_TAX, 0);
+		if (!k)
+			break;
+		/* to check: its offset is filled in below */
+		*p++ = (struct sock_filter)BPF_STMT(BPF_JMP | BPF_JA, 0);
+	}
+	/* the ja of blocks 3, 2, 1 go to check, right here */
+	check = (unsigned int)(p - prog);
+	for (here = locate + 6; here < check; here++)
+		if (prog[here].code == (BPF_JMP | BPF_JA))
+			prog[here].k = check - (here + 1);
 
 	/* check: X is where SUBSYSTEM= must be; 8 instructions to "keep" */
 	*p++ = (struct sock_filter)BPF_STMT(BPF_LD | BPF_W | BPF_IND, 0);
