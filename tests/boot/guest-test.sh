@@ -1,0 +1,115 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# In the Debian guest of scripts/boot-debian.sh, after multi-user.target.
+# The phase comes from the kernel command line (as9888.phase=):
+#  factory  a board fresh from assembly: no record yet; it must boot clean
+#           (no failed unit, the restore unit skipped), then the factory
+#           test runs through the driver and writes the record.
+#  boot     the record exists: the calibration must have been applied by
+#           as9888-calibd-restore@ before multi-user.target, with the
+#           driver a DKMS module and the adapter loaded at boot; then a
+#           rebind and a late instantiation are applied again, and the
+#           socket answers "request status" for a user in SocketGroup.
+# Prints "BOOTTEST ok|not ok - what" lines and "BOOTTEST done".
+set -u
+phase=$(sed -n 's/.*as9888\.phase=\([a-z]*\).*/\1/p' /proc/cmdline)
+rec=/var/lib/as9888/calibration
+n=0
+ok() { echo "BOOTTEST ok - $*"; }
+bad() { echo "BOOTTEST not ok - $*"; }
+check() { local what=$1; shift; if "$@"; then ok "$what"; else bad "$what"; fi; }
+
+dev() {	# the as9888 IIO device's sysfs directory
+	local d
+	for d in /sys/bus/iio/devices/iio:device*; do
+		[ "$(cat "$d/name" 2>/dev/null)" = as9888 ] && { readlink -f "$d"; return 0; }
+	done
+	return 1
+}
+wait_dev() { for _ in $(seq 100); do dev >/dev/null && return 0; sleep 0.2; done; return 1; }
+t_level() { awk '$1 == "t_level" { printf "%d", $3 * 1000 + ($3 < 0 ? -0.5 : 0.5) }' "$rec"; }
+applied() {
+	local d
+	d=$(dev) || return 1
+	[ "$(cat "$d/in_accel_calibtemp")" = "$(t_level)" ] &&
+		[ "$(cat "$d/in_accel_z_caliboffset")" != 0.000000 ]
+}
+wait_applied() { for _ in $(seq 150); do applied && return 0; sleep 0.2; done; return 1; }
+mono() { systemctl show -P "$2" "$1"; }
+restore_unit() { systemctl list-units --all --plain --no-legend 'as9888-calibd-restore@*' | awk '{ print $1; exit }'; }
+
+echo "BOOTTEST phase $phase, kernel $(uname -r), systemd $(systemctl --version | awk 'NR == 1 { print $2 }')"
+check "the AS9888 IIO device is there (driver from DKMS, adapter at boot)" wait_dev
+check "driver modules from the DKMS tree" eval 'modinfo -n as9888_i2c | grep -q /updates/dkms/'
+# (multi-user.target is reached: this unit is ordered after it)
+failed=$(systemctl --failed --plain --no-legend | awk '{ print $1 }' | grep -v as9888-boottest | tr '\n' ' ')
+check "no failed unit (${failed:-none})" test -z "$failed"
+
+case $phase in
+factory)
+	u=$(restore_unit)
+	check "no record: restore unit $u skipped by its condition, not failed" \
+		eval '[ -n "$u" ] && [ "$(mono "$u" ConditionResult)" = no ] && [ "$(mono "$u" Result)" = success ]'
+	check "factory test through the driver writes the record" \
+		eval 'as9888-calibd factory-test --backend iio --record "$rec" >/tmp/ft.log 2>&1'
+	tail -5 /tmp/ft.log | sed 's/^/BOOTTEST # /'
+	check "record written" test -s "$rec"
+	;;
+boot)
+	u=$(restore_unit)
+	echo "BOOTTEST # restore unit: $u"
+	check "calibration applied at boot" applied
+	check "by as9888-calibd-restore@ (ran, succeeded)" \
+		eval '[ -n "$u" ] && [ "$(mono "$u" ExecMainStatus)" = 0 ] && [ "$(mono "$u" ActiveState)" = active ]'
+	r=$(mono "$u" ActiveEnterTimestampMonotonic)
+	m=$(mono multi-user.target ActiveEnterTimestampMonotonic)
+	echo "BOOTTEST # restore done at ${r} us, multi-user.target at ${m} us (monotonic)"
+	check "before multi-user.target" test "$r" -gt 0 -a "$r" -lt "$m"
+	check "the daemon runs (socket-activated or started)" \
+		eval 'systemctl start as9888-calibd.service && systemctl is-active -q as9888-calibd.service'
+
+	# rebind: the driver comes back with its defaults; restore@ (BindsTo)
+	# and the daemon apply the record again
+	d=$(dev); i2c=$(basename "$(readlink -f "$d/..")")
+	sleep 1
+	c0=$(journalctl -q -o cat -u as9888-calibd.service | grep -c "calibration applied to")
+	echo "$i2c" >/sys/bus/i2c/drivers/as9888_i2c/unbind
+	sleep 1
+	echo "$i2c" >/sys/bus/i2c/drivers/as9888_i2c/bind
+	wait_dev
+	check "rebind: applied again" wait_applied
+	# the daemon too: kernel uevents reach its private network namespace
+	# (PrivateNetwork=yes) through the socket filter
+	daemon_applied() { journalctl -q -o cat -u as9888-calibd.service | grep -c "calibration applied to"; }
+	check "rebind: the daemon applied it too (uevent through PrivateNetwork= and the filter)" \
+		eval 'for _ in $(seq 50); do [ "$(daemon_applied)" -gt "$c0" ] && break; sleep 0.2; done; [ "$(daemon_applied)" -gt "$c0" ]'
+	journalctl -q -o cat -u as9888-calibd.service | tail -6 | sed 's/^/BOOTTEST # daemon: /'
+
+	# a late probe: the adapter removes the device and instantiates it
+	# again (debugfs "present"), as a deferred probe or a late module
+	# would; restore@ (BindsTo= the device) stops and runs again
+	t1=$(mono "$u" ExecMainStartTimestampMonotonic)
+	echo 0 >/sys/kernel/debug/as9888_sim/present
+	sleep 1
+	check "device removed: no device, restore@ stopped with it" \
+		eval '! dev && [ "$(mono "$u" ActiveState)" = inactive ]'
+	sleep 2
+	echo 1 >/sys/kernel/debug/as9888_sim/present
+	wait_dev
+	check "device instantiated late: applied again" wait_applied
+	sleep 1
+	u2=$(restore_unit)
+	t2=$(mono "$u2" ExecMainStartTimestampMonotonic)
+	echo "BOOTTEST # restore@ started at $t1 us, and for the new device at $t2 us"
+	check "restore@ ran again for the new device" \
+		eval '[ "$t2" -gt "$t1" ] && [ "$(mono "$u2" ExecMainStatus)" = 0 ]'
+
+	check "request status as a user in SocketGroup" \
+		eval 'runuser -u tester -- as9888-calibd request status >/tmp/st.log 2>&1'
+	sed 's/^/BOOTTEST # /' /tmp/st.log | head -5
+	check "and refused for a user outside it" \
+		eval '! runuser -u nobody -- as9888-calibd request status >/dev/null 2>&1'
+	;;
+esac
+echo "BOOTTEST done"
