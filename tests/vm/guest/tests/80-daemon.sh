@@ -1,9 +1,13 @@
 # SPDX-License-Identifier: GPL-2.0
-# as9888-calibd: a factory record made for this unit, restored through the
-# driver (restore --backend iio): caliboffset and calibtemp then hold what
-# the record implies, and the compensated readings are right (0 on the
-# horizontal axes, 1 g on the vertical one); also after a driver reload; a
-# record of another chip is refused.
+# as9888-calibd's records restored through the driver (restore --backend
+# iio). The record is made on this chip: the factory test through the
+# driver (84-daemon-iio.sh tests that test itself). After a restore,
+# caliboffset and calibtemp hold what the record implies and the
+# compensated readings are right (0 on the horizontal axes, 1 g on the
+# vertical one); also after a driver reload. Refused, with nothing applied:
+# a record of another chip, and a record of the simulator (source =
+# simulator: a simulated calibration is never applied to a chip).
+# Leaves /tmp/rec and /tmp/unit.txt for 82 and 85.
 load_sim
 load_driver
 U="temperature = 25
@@ -14,24 +18,29 @@ printf '%s\n' "$U" > /tmp/unit.txt
 printf '%s\n' "$U" > $SIM/unit
 wait_dev 5
 CALIBD=/bin/as9888-calibd
-check "factory test (sim backend, same unit) writes a record" \
-	sh -c "$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt --record /tmp/rec > /tmp/ft.log 2>&1"
-tail -n 3 /tmp/ft.log | sed 's/^/# /'
 CAL0=$(cal_get)
-eq "no calibration before restore (zero offsets at t_RT)" "$CAL0" \
+eq "no calibration after probe (zero offsets at t_RT)" "$CAL0" \
 	"0.000000 0.000000 0.000000 23750"
+rm -f /tmp/rec
+check "factory test of this chip through the driver writes a record" \
+	sh -c "$CALIBD factory-test --backend iio --record /tmp/rec > /tmp/ft.log 2>&1"
+tail -n 3 /tmp/ft.log | sed 's/^/# /'
+B="$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)"
+# start from the probe's state, DAC included
+rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
+eq "driver reload: the probe's calibration" "$(cal_get)" "$CAL0"
 check "restore --backend iio" sh -c "$CALIBD restore --backend iio --record /tmp/rec > /tmp/r.log 2>&1"
 sed 's/^/# /' /tmp/r.log
 CAL=$(cal_get)
 diag "caliboffset x y z, calibtemp: $CAL (the record implies $(rec_cal /tmp/rec))"
 cal_near "caliboffset and calibtemp = what the record implies" "$CAL" "$(rec_cal /tmp/rec)"
+eq "calibbias = the record's DAC, as the factory test left it" \
+	"$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)" "$B"
 # the mean of 16 reads (noise 0.5 chip LSB = 2 LSB rms: the mean is within
 # about 1 LSB) and the rounding of the chip: within 4 LSB
 A=$(accel_mean 16)
 diag "compensated readings after restore: $A"
 accel_near "compensated readings after restore: 0 0 1 g" "$A" "0 0 $G_LSB" 4
-B="$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)"
-diag "calibbias after restore: $B"
 rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
 eq "driver reload forgets the calibration" "$(cal_get)" "$CAL0"
 check "restore after the reload" sh -c "$CALIBD restore --backend iio --record /tmp/rec > /tmp/r.log 2>&1"
@@ -39,13 +48,31 @@ eq "same calibration after reload + restore" "$(cal_get)" "$CAL"
 eq "same calibbias after reload + restore" \
 	"$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)" "$B"
 accel_near "compensated readings after reload + restore: 0 0 1 g" "$(accel_mean 16)" "0 0 $G_LSB" 4
-# A record of another chip (ET2 differs)
-printf '%s\neeprom = 9a 71 15 5c 80 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 52\n' "$U" > /tmp/other.txt
-$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/other.txt --record /tmp/rec2 > /tmp/ft2.log 2>&1
-set_cal 0 0 0 23750
+
+# A record of the simulator, for the same unit: refused
+$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt --record /tmp/rec-sim > /tmp/ft-sim.log 2>&1
+check "the simulator's record says so (source = simulator)" grep -qx "source = simulator" /tmp/rec-sim
+set_cal $CAL0
+if $CALIBD restore --backend iio --record /tmp/rec-sim > /tmp/r2.log 2>&1; then
+	nok "restore refuses the simulator's record"
+else
+	ok "restore refuses the simulator's record"
+fi
+sed 's/^/# /' /tmp/r2.log
+eq "nothing applied from the simulator's record" "$(cal_get)" "$CAL0"
+
+# A record of another chip (ET2 differs): made on that chip, refused on this one
+printf '%s\neeprom = 9a 71 15 5c 80 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 52\n' "$U" > $SIM/unit
+wait_dev 5
+rm -f /tmp/rec2
+check "factory test of another chip" \
+	sh -c "$CALIBD factory-test --backend iio --record /tmp/rec2 > /tmp/ft2.log 2>&1"
+printf '%s\n' "$U" > $SIM/unit
+wait_dev 5
 if $CALIBD restore --backend iio --record /tmp/rec2 > /tmp/r2.log 2>&1; then
 	nok "restore refuses another chip's record"
 else
 	ok "restore refuses another chip's record"
 fi
+sed 's/^/# /' /tmp/r2.log
 eq "nothing applied from another chip's record" "$(cal_get)" "$CAL0"

@@ -115,23 +115,24 @@ T0=$(ms_now)
 $CALIBD show --record $REC > /dev/null 2>&1
 diag "for scale: a run that only reads the record takes $(($(ms_now) - T0)) ms (wall)"
 check "the report has its duration" awk "BEGIN { exit !($DUR > 0 && $DUR <= $WALL + 10) }"
-# 80-daemon.sh made a record of the same unit with the simulator backend:
-# the same model and seed give the same samples, so the same calibration
-if [ -f /tmp/rec ]; then
-	for k in dac level_mean t_level gravity samples; do
-		eq "raw record's $k = the sim backend's" "$(rec_get $REC $k)" "$(rec_get /tmp/rec $k)"
-	done
-fi
+# The simulator backend on the same unit: the same model and seed give the
+# same samples, so the same calibration
+$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt \
+	--record $RD/sim > /dev/null 2>&1
+for k in dac level_mean t_level gravity samples; do
+	eq "raw record's $k = the sim backend's" "$(rec_get $REC $k)" "$(rec_get $RD/sim $k)"
+done
 
 # Every fault stops the test at its step (datasheet sections 7 and 8;
 # tests/daemon/test_ftest.c has the same table for the simulator backend),
 # with exit status 1 and the existing record untouched.
 cp $REC $RD/good
 INODE=$(stat -c %i $REC)
-# nak: every 50th transfer fails. Transfers 1-18 are steps 1-2 and the
-# set-up of step 3, 19-38 the first level run, 39-40 the DAC write and
-# read-back: the 50th is the sample read of the 5th measurement of the
-# second level run (3-28).
+# nak: every 50th transfer fails (counted from power-on). Where that falls
+# is not the same on every run (guests saw 3-3 and 3-28, measurements of
+# the first and the second level run, and 3-24, the DAC write): any step
+# is accepted; that the test stops at the first NAK, with a bus error, is
+# checked below.
 for f in "wia:1-4:device ID (WIA)" \
 	 "rstn_open:1-2:RSTN pin check (D11)" \
 	 "eeprom_blank:1-27:EEPROM contents" \
@@ -140,9 +141,9 @@ for f in "wia:1-4:device ID (WIA)" \
 	 "no_drdy:2-4:INT1 pin check (D11)" \
 	 "hofl:2-7:magnetometer X no overflow" \
 	 "selftest_weak:2-21:self-test Z after adjustment" \
-	 "saturate_z:3-16:maximum of Z" \
+	 "saturate_z:3-12:Z below 2047 on every sample" \
 	 "stuck_x:3-23:level posture (D8)" \
-	 "nak:3-28:sample read"; do
+	 "nak:*:*"; do
 	F=${f%%:*}; r=${f#*:}; S=${r%%:*}; N=${r#*:}
 	printf '%s\nfault = %s\n' "$U" "$F" > $SIM/unit
 	T0=$(ms_now)
@@ -150,8 +151,16 @@ for f in "wia:1-4:device ID (WIA)" \
 	RC=$?
 	T1=$(ms_now)
 	eq "$F: exit status 1" $RC 1
-	eq "$F: fails first at $S ($N)" "$(jfirst $RD/f.json)" "$S $N"
-	eq "$F: failed_step $S" "$(jtop $RD/f.json failed_step)" "$S"
+	G=$(jfirst $RD/f.json)
+	case "$G" in
+	$S" "$N) ok "$F: fails first at $S ($N)" ;;
+	*) nok "$F: fails first at $S ($N)" "got '$G'" ;;
+	esac
+	G=$(jtop $RD/f.json failed_step)
+	case "$G" in
+	$S) ok "$F: failed_step $S" ;;
+	*) nok "$F: failed_step $S" "got '$G'" ;;
+	esac
 	check "$F: no record written, the existing one untouched" same_file $REC $RD/good
 	diag "$F: $(grep '"step": .*"result": "fail"' $RD/f.json | head -n 1 | sed 's/^ *//') ($((T1 - T0)) ms)"
 done
@@ -161,6 +170,7 @@ check "nak: the failure is a bus error" grep -q '"measured": "bus transfer faile
 printf '%s\nfault = int1_open\n' "$U" > $SIM/unit
 $CALIBD factory-test $RAW --record $REC --json --keep-going > $RD/f.json 2> $RD/f.err
 eq "int1_open, --keep-going: exit status 1" $? 1
+grep '"step": .*"result": "fail"' $RD/f.json | sed 's/^ */# int1_open, --keep-going: /' | cut -c1-300
 eq "int1_open, --keep-going: only INT1's check failed" \
 	"$(grep '"step": .*"result": "fail"' $RD/f.json | sed -n 's/.*"name": "\([^"]*\)".*/\1/p')" \
 	"INT1 pin check (D11)"
@@ -203,10 +213,12 @@ cal_near "caliboffset and calibtemp = what the record implies" "$CAL" "$(rec_cal
 eq "calibbias = the record's DAC (6.6 dac2lin)" \
 	"$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)" \
 	"$(rec_bias $REC)"
+# 80-daemon.sh's record of this unit, made through the driver: other
+# samples of the same chip, so within 1 chip LSB (noise 0.5 LSB rms)
 if [ -f /tmp/rec ]; then
 	$CALIBD restore --backend iio --record /tmp/rec > /dev/null 2>&1
-	eq "the same calibration as the sim backend's record (80-daemon.sh)" \
-		"$(cal_get)" "$CAL"
+	cal_near "the iio backend's record (80-daemon.sh) within 1 chip LSB of this one" \
+		"$(cal_get)" "$CAL" 1
 	$CALIBD restore --backend iio --record $REC > /dev/null 2>&1
 fi
 

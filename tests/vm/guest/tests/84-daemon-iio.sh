@@ -140,7 +140,7 @@ check_not "SIGTERM stops the daemon" kill -0 $DPID84
 
 # Each fault fails the test at its step (or is out of the driver's sight)
 for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
-	"stuck_x 3-23" "saturate_z 3-16" "selftest_weak 2-21" "eeprom_blank nodev" \
+	"stuck_x 3-23" "saturate_z 3-12" "selftest_weak 2-21" "eeprom_blank nodev" \
 	"wia nodev" "nak any"; do
 	set -- $f
 	set_unit "fault = $1"
