@@ -100,7 +100,8 @@ settle
 
 w0=$(switches)
 for _ in $(seq "$storm"); do echo change >"$lo_uevent"; done
-for _ in $(seq 200); do [ "$(cat "$work/heard" 2>/dev/null)" = "$storm" ] && break; sleep 0.05; done
+# the listener may lag on a busy machine: up to a minute
+for _ in $(seq 600); do [ "$(cat "$work/heard" 2>/dev/null)" = "$storm" ] && break; sleep 0.1; done
 sleep 0.5
 w1=$(switches)
 heard=$(cat "$work/heard" 2>/dev/null || echo 0)
