@@ -71,7 +71,8 @@ check "daemon up" test -S "$sock"
 python3 - "$work/heard" <<'PY' &
 import socket, sys
 s = socket.socket(socket.AF_NETLINK, socket.SOCK_DGRAM, 15)
-s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4 << 20)
+# root: past rmem_max (SO_RCVBUFFORCE), so a lagging listener loses nothing
+s.setsockopt(socket.SOL_SOCKET, getattr(socket, "SO_RCVBUFFORCE", 33), 8 << 20)
 s.bind((0, 1))
 open(sys.argv[1] + ".ready", "w").close()
 n = 0
