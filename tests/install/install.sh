@@ -78,7 +78,7 @@ check "the raw backend's pins say they need libgpiod" \
 
 # the examples build with exactly these flags and sources
 check "Yocto recipe and Buildroot package: the product flags of this test" \
-	python3 - "$src/integration" $product_flags <<'PY'
+	python3 - "$src/contrib" $product_flags <<'PY'
 import re, sys
 top, want = sys.argv[1], set(sys.argv[2:])
 bb = open(top + "/yocto/as9888-calibd_0.1.0.bb").read()
@@ -104,7 +104,7 @@ for t in targets:
     if t["name"] in ("as9888-calibd", "calibd", "as9888_calib"):
         for s in t["target_sources"]:
             built |= {os.path.relpath(f, src) for f in s["sources"]}
-bp = open(src + "/integration/android/Android.bp").read()
+bp = open(src + "/contrib/android/Android.bp").read()
 listed = set(re.findall(r'"([\w/.-]+\.c)"', bp))
 assert built == listed, sorted(built ^ listed)
 PY
