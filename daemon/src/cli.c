@@ -9,79 +9,6 @@
 
 #include "cli.h"
 
-enum {
-	OPT_RECORD = 256,
-	OPT_BACKEND,
-	OPT_UNIT,
-	OPT_SIM_CLOCK,
-	OPT_JSON,
-	OPT_SAMPLES,
-	OPT_PERMISSIBLE_ERROR,
-	OPT_FLUCTUATION,
-	OPT_LPF,
-	OPT_GRAVITY,
-	OPT_STABLE_TIMEOUT,
-	OPT_KEEP_GOING,
-	OPT_TEMPERATURE,
-	OPT_VERBOSE,
-	OPT_HELP,
-	OPT_I2C_DEV,
-	OPT_I2C_ADDRESS,
-	OPT_GPIOCHIP,
-	OPT_RSTN_LINE,
-	OPT_INT1_LINE,
-	OPT_INT2_LINE,
-	OPT_SOCKET,
-	OPT_SOCKET_MODE,
-	OPT_SOCKET_GROUP,
-	OPT_LOCK_TIMEOUT,
-	OPT_STATE_GROUP,
-	OPT_JUNIT,
-};
-
-static const struct option long_opts[] = {
-	{ "record", required_argument, NULL, OPT_RECORD },
-	{ "backend", required_argument, NULL, OPT_BACKEND },
-	{ "unit", required_argument, NULL, OPT_UNIT },
-	{ "sim-clock", required_argument, NULL, OPT_SIM_CLOCK },
-	{ "json", no_argument, NULL, OPT_JSON },
-	{ "samples", required_argument, NULL, OPT_SAMPLES },
-	{ "permissible-error", required_argument, NULL, OPT_PERMISSIBLE_ERROR },
-	{ "fluctuation", required_argument, NULL, OPT_FLUCTUATION },
-	{ "lpf", no_argument, NULL, OPT_LPF },
-	{ "gravity", required_argument, NULL, OPT_GRAVITY },
-	{ "stable-timeout", required_argument, NULL, OPT_STABLE_TIMEOUT },
-	{ "keep-going", no_argument, NULL, OPT_KEEP_GOING },
-	{ "temperature", required_argument, NULL, OPT_TEMPERATURE },
-	{ "verbose", no_argument, NULL, OPT_VERBOSE },
-	{ "help", no_argument, NULL, OPT_HELP },
-	{ "i2c-dev", required_argument, NULL, OPT_I2C_DEV },
-	{ "i2c-address", required_argument, NULL, OPT_I2C_ADDRESS },
-	{ "gpiochip", required_argument, NULL, OPT_GPIOCHIP },
-	{ "rstn-line", required_argument, NULL, OPT_RSTN_LINE },
-	{ "int1-line", required_argument, NULL, OPT_INT1_LINE },
-	{ "int2-line", required_argument, NULL, OPT_INT2_LINE },
-	{ "socket", required_argument, NULL, OPT_SOCKET },
-	{ "socket-mode", required_argument, NULL, OPT_SOCKET_MODE },
-	{ "socket-group", required_argument, NULL, OPT_SOCKET_GROUP },
-	{ "lock-timeout", required_argument, NULL, OPT_LOCK_TIMEOUT },
-	{ "state-group", required_argument, NULL, OPT_STATE_GROUP },
-	{ "junit", required_argument, NULL, OPT_JUNIT },
-	{ NULL, 0, NULL, 0 },
-};
-
-/* The long name of option @opt (the option, never its value) */
-static const char *option_name(int opt)
-{
-	const struct option *l;
-
-	for (l = long_opts; l->name; l++)
-		if (l->val == opt)
-			return l->name;
-
-	return "?";
-}
-
 static int bad(char *err, size_t errlen, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
@@ -172,6 +99,351 @@ static int parse_address(const char *s, unsigned int *address)
 	return 0;
 }
 
+/* Option handlers: apply @arg to @o, or say what the option takes */
+typedef int (*cli_apply_fn)(struct cli_opts *o, const char *arg, char *err,
+			    size_t errlen);
+
+static int apply_record(struct cli_opts *o, const char *arg, char *err,
+			size_t errlen)
+{
+	if (!*arg)
+		return bad(err, errlen, "--record needs a path");
+	o->record_path = arg;
+
+	return 0;
+}
+
+static int apply_backend(struct cli_opts *o, const char *arg, char *err,
+			 size_t errlen)
+{
+	if (!strcmp(arg, "sim"))
+		o->backend = CLI_BACKEND_SIM;
+	else if (!strcmp(arg, "raw"))
+		o->backend = CLI_BACKEND_RAW;
+	else if (!strcmp(arg, "iio"))
+		o->backend = CLI_BACKEND_IIO;
+	else
+		return bad(err, errlen, "unknown backend \"%s\" (sim, raw or iio)",
+			   arg);
+	o->backend_given = true;
+
+	return 0;
+}
+
+static int apply_unit(struct cli_opts *o, const char *arg, char *err,
+		      size_t errlen)
+{
+	o->unit_path = arg;
+
+	return 0;
+}
+
+static int apply_sim_clock(struct cli_opts *o, const char *arg, char *err,
+			   size_t errlen)
+{
+	if (!strcmp(arg, "virtual"))
+		o->virtual_clock = true;
+	else if (strcmp(arg, "real"))
+		return bad(err, errlen, "--sim-clock takes real or virtual, not \"%s\"",
+			   arg);
+
+	return 0;
+}
+
+static int apply_json(struct cli_opts *o, const char *arg, char *err,
+		      size_t errlen)
+{
+	o->json = true;
+
+	return 0;
+}
+
+static int apply_samples(struct cli_opts *o, const char *arg, char *err,
+			 size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 0, AS9888_SAMPLES_MIN, AS9888_SAMPLES_MAX, &v))
+		return bad(err, errlen, "--samples takes an integer %d..%d, not \"%s\"",
+			   AS9888_SAMPLES_MIN, AS9888_SAMPLES_MAX, arg);
+	o->ftest.samples = (uint32_t)v;
+
+	return 0;
+}
+
+/* LSB with up to 3 decimals, 0.001..100 */
+static int apply_permissible_error(struct cli_opts *o, const char *arg,
+				   char *err, size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 3, 1, 100000, &v))
+		return bad(err, errlen, "--permissible-error takes LSB in 0.001..100, not \"%s\"",
+			   arg);
+	o->ftest.permissible_error_q16 =
+		(uint32_t)((v * AS9888_Q16_ONE + 500) / 1000);
+
+	return 0;
+}
+
+static int apply_fluctuation(struct cli_opts *o, const char *arg, char *err,
+			     size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 0, 0, 4095, &v))
+		return bad(err, errlen, "--fluctuation takes an integer 0..4095, not \"%s\"",
+			   arg);
+	o->ftest.fluctuation = (uint32_t)v;
+	o->fluctuation_given = true;
+
+	return 0;
+}
+
+static int apply_lpf(struct cli_opts *o, const char *arg, char *err,
+		     size_t errlen)
+{
+	o->ftest.lpf = true;
+
+	return 0;
+}
+
+static int apply_gravity(struct cli_opts *o, const char *arg, char *err,
+			 size_t errlen)
+{
+	if (parse_gravity(arg, o->ftest.gravity))
+		return bad(err, errlen, "--gravity takes x+ x- y+ y- z+ z-, not \"%s\"",
+			   arg);
+	o->ftest.gravity_given = true;
+
+	return 0;
+}
+
+static int apply_stable_timeout(struct cli_opts *o, const char *arg,
+				char *err, size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 0, 0, 600000, &v))
+		return bad(err, errlen, "--stable-timeout takes milliseconds 0..600000, not \"%s\"",
+			   arg);
+	o->ftest.stable_timeout_ms = (uint32_t)v;
+
+	return 0;
+}
+
+static int apply_keep_going(struct cli_opts *o, const char *arg, char *err,
+			    size_t errlen)
+{
+	o->ftest.keep_going = true;
+
+	return 0;
+}
+
+static int apply_temperature(struct cli_opts *o, const char *arg, char *err,
+			     size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 3, -30000, 85000, &v))
+		return bad(err, errlen, "--temperature takes degrees Celsius -30..85, not \"%s\"",
+			   arg);
+	o->temperature_given = true;
+	o->temperature_mdegc = (int32_t)v;
+
+	return 0;
+}
+
+static int apply_verbose(struct cli_opts *o, const char *arg, char *err,
+			 size_t errlen)
+{
+	o->verbose = true;
+
+	return 0;
+}
+
+static int apply_help(struct cli_opts *o, const char *arg, char *err,
+		      size_t errlen)
+{
+	o->command = CLI_HELP;
+
+	return 0;
+}
+
+static int apply_i2c_dev(struct cli_opts *o, const char *arg, char *err,
+			 size_t errlen)
+{
+	o->raw.i2c_dev = arg;
+
+	return 0;
+}
+
+static int apply_i2c_address(struct cli_opts *o, const char *arg, char *err,
+			     size_t errlen)
+{
+	if (parse_address(arg, &o->raw.address))
+		return bad(err, errlen, "--i2c-address takes 0x0c..0x0f, not \"%s\"",
+			   arg);
+
+	return 0;
+}
+
+static int apply_gpiochip(struct cli_opts *o, const char *arg, char *err,
+			  size_t errlen)
+{
+	o->raw.gpiochip = arg;
+
+	return 0;
+}
+
+static int parse_line(const char *name, const char *arg, int *line, char *err,
+		      size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 0, 0, 4095, &v))
+		return bad(err, errlen, "--%s takes a line offset 0..4095, not \"%s\"",
+			   name, arg);
+	*line = (int)v;
+
+	return 0;
+}
+
+static int apply_rstn_line(struct cli_opts *o, const char *arg, char *err,
+			   size_t errlen)
+{
+	return parse_line("rstn-line", arg, &o->raw.rstn, err, errlen);
+}
+
+static int apply_int1_line(struct cli_opts *o, const char *arg, char *err,
+			   size_t errlen)
+{
+	return parse_line("int1-line", arg, &o->raw.int1, err, errlen);
+}
+
+static int apply_int2_line(struct cli_opts *o, const char *arg, char *err,
+			   size_t errlen)
+{
+	return parse_line("int2-line", arg, &o->raw.int2, err, errlen);
+}
+
+static int apply_socket(struct cli_opts *o, const char *arg, char *err,
+			size_t errlen)
+{
+	if (!*arg)
+		return bad(err, errlen, "--socket needs a path");
+	o->socket_path = arg;
+
+	return 0;
+}
+
+static int apply_socket_mode(struct cli_opts *o, const char *arg, char *err,
+			     size_t errlen)
+{
+	if (parse_mode(arg, &o->socket_mode))
+		return bad(err, errlen, "--socket-mode takes an octal mode such as 0660, not \"%s\"",
+			   arg);
+
+	return 0;
+}
+
+static int apply_socket_group(struct cli_opts *o, const char *arg, char *err,
+			      size_t errlen)
+{
+	o->socket_group = arg;
+
+	return 0;
+}
+
+static int apply_lock_timeout(struct cli_opts *o, const char *arg, char *err,
+			      size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 0, 0, 3600, &v))
+		return bad(err, errlen, "--lock-timeout takes seconds 0..3600, not \"%s\"",
+			   arg);
+	o->lock_timeout_s = (unsigned int)v;
+
+	return 0;
+}
+
+static int apply_state_group(struct cli_opts *o, const char *arg, char *err,
+			     size_t errlen)
+{
+	if (!*arg)
+		return bad(err, errlen, "--state-group needs a group name");
+	o->state_group = arg;
+
+	return 0;
+}
+
+static int apply_junit(struct cli_opts *o, const char *arg, char *err,
+		       size_t errlen)
+{
+	if (!*arg)
+		return bad(err, errlen, "--junit needs a path");
+	o->junit_path = arg;
+
+	return 0;
+}
+
+/* The commands an option belongs to */
+#define CMD(c)		(1u << (c))
+#define CMDS_ALL	(~0u)
+#define CMDS_CHIP	(CMD(CLI_FACTORY_TEST) | CMD(CLI_RESTORE) |		\
+			 CMD(CLI_RECALIBRATE) | CMD(CLI_ROLLBACK) |		\
+			 CMD(CLI_CHECK) | CMD(CLI_DAEMON))
+#define CMDS_LEVEL	(CMD(CLI_FACTORY_TEST) | CMD(CLI_RECALIBRATE) |	\
+			 CMD(CLI_CHECK))
+#define CMDS_LOCKING	(CMD(CLI_FACTORY_TEST) | CMD(CLI_RECALIBRATE) |	\
+			 CMD(CLI_ROLLBACK) | CMD(CLI_DAEMON))
+
+/**
+ * struct cli_option - one option: its name, whether it takes a value, the
+ * commands that take it, and what it sets
+ */
+struct cli_option {
+	const char *name;
+	bool has_arg;
+	unsigned int commands;
+	cli_apply_fn apply;
+};
+
+static const struct cli_option cli_options[] = {
+	{ "record", true, CMDS_ALL & ~CMD(CLI_REQUEST), apply_record },
+	{ "state-group", true, CMDS_ALL & ~CMD(CLI_REQUEST), apply_state_group },
+	{ "help", false, CMDS_ALL, apply_help },
+	{ "socket", true, CMD(CLI_DAEMON) | CMD(CLI_REQUEST), apply_socket },
+	{ "socket-mode", true, CMD(CLI_DAEMON), apply_socket_mode },
+	{ "socket-group", true, CMD(CLI_DAEMON), apply_socket_group },
+	{ "backend", true, CMDS_CHIP, apply_backend },
+	{ "unit", true, CMDS_CHIP, apply_unit },
+	{ "sim-clock", true, CMDS_CHIP, apply_sim_clock },
+	{ "i2c-dev", true, CMDS_CHIP, apply_i2c_dev },
+	{ "i2c-address", true, CMDS_CHIP, apply_i2c_address },
+	{ "gpiochip", true, CMDS_CHIP, apply_gpiochip },
+	{ "rstn-line", true, CMDS_CHIP, apply_rstn_line },
+	{ "int1-line", true, CMDS_CHIP, apply_int1_line },
+	{ "int2-line", true, CMDS_CHIP, apply_int2_line },
+	{ "json", false, CMDS_LEVEL | CMD(CLI_SHOW) | CMD(CLI_REQUEST), apply_json },
+	{ "temperature", true, CMD(CLI_SHOW), apply_temperature },
+	{ "lock-timeout", true, CMDS_LOCKING, apply_lock_timeout },
+	{ "verbose", false, CMD(CLI_RESTORE), apply_verbose },
+	{ "samples", true, CMDS_LEVEL, apply_samples },
+	{ "fluctuation", true, CMDS_LEVEL, apply_fluctuation },
+	{ "lpf", false, CMDS_LEVEL, apply_lpf },
+	{ "gravity", true, CMDS_LEVEL, apply_gravity },
+	{ "stable-timeout", true, CMDS_LEVEL, apply_stable_timeout },
+	{ "permissible-error", true, CMD(CLI_FACTORY_TEST), apply_permissible_error },
+	{ "keep-going", false, CMD(CLI_FACTORY_TEST), apply_keep_going },
+	{ "junit", true, CMD(CLI_FACTORY_TEST), apply_junit },
+};
+
+#define CLI_N_OPTIONS	(sizeof(cli_options) / sizeof(cli_options[0]))
+/* getopt_long()'s value of cli_options[i]: past every short option */
+#define CLI_OPT_BASE	256
+
 static const char *const commands[] = {
 	[CLI_HELP] = "help",
 	[CLI_FACTORY_TEST] = "factory-test",
@@ -183,56 +455,6 @@ static const char *const commands[] = {
 	[CLI_DAEMON] = "daemon",
 	[CLI_REQUEST] = "request",
 };
-
-/* Which options each command takes */
-static bool option_allowed(enum cli_command cmd, int opt)
-{
-	bool chip = cmd == CLI_FACTORY_TEST || cmd == CLI_RESTORE ||
-		    cmd == CLI_RECALIBRATE || cmd == CLI_ROLLBACK ||
-		    cmd == CLI_CHECK || cmd == CLI_DAEMON;
-	bool level = cmd == CLI_FACTORY_TEST || cmd == CLI_RECALIBRATE ||
-		     cmd == CLI_CHECK;
-
-	switch (opt) {
-	case OPT_RECORD:
-	case OPT_STATE_GROUP:
-		return cmd != CLI_REQUEST;
-	case OPT_HELP:
-		return true;
-	case OPT_SOCKET:
-		return cmd == CLI_DAEMON || cmd == CLI_REQUEST;
-	case OPT_SOCKET_MODE:
-	case OPT_SOCKET_GROUP:
-		return cmd == CLI_DAEMON;
-	case OPT_BACKEND:
-	case OPT_UNIT:
-	case OPT_SIM_CLOCK:
-	case OPT_I2C_DEV:
-	case OPT_I2C_ADDRESS:
-	case OPT_GPIOCHIP:
-	case OPT_RSTN_LINE:
-	case OPT_INT1_LINE:
-	case OPT_INT2_LINE:
-		return chip;
-	case OPT_JSON:
-		return level || cmd == CLI_SHOW || cmd == CLI_REQUEST;
-	case OPT_TEMPERATURE:
-		return cmd == CLI_SHOW;
-	case OPT_LOCK_TIMEOUT:
-		return cmd == CLI_FACTORY_TEST || cmd == CLI_RECALIBRATE ||
-		       cmd == CLI_ROLLBACK || cmd == CLI_DAEMON;
-	case OPT_VERBOSE:
-		return cmd == CLI_RESTORE;
-	case OPT_SAMPLES:
-	case OPT_FLUCTUATION:
-	case OPT_LPF:
-	case OPT_GRAVITY:
-	case OPT_STABLE_TIMEOUT:
-		return level;
-	default:
-		return cmd == CLI_FACTORY_TEST;
-	}
-}
 
 const char *cli_backend_name(enum cli_backend b)
 {
@@ -276,10 +498,10 @@ static void pick_backend(struct cli_opts *o)
 int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	      size_t errlen)
 {
-	bool backend_given = false;
+	struct option long_opts[CLI_N_OPTIONS + 1] = { { 0 } };
+	const struct cli_option *spec;
 	unsigned int i;
-	int64_t v;
-	int opt;
+	int opt, ret;
 
 	memset(o, 0, sizeof(*o));
 	o->record_path = CLI_DEFAULT_RECORD;
@@ -292,6 +514,13 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	o->socket_mode = CLI_DEFAULT_SOCKET_MODE;
 	o->lock_timeout_s = CLI_DEFAULT_LOCK_TIMEOUT_S;
 	ftest_opts_default(&o->ftest);
+
+	for (i = 0; i < CLI_N_OPTIONS; i++) {
+		long_opts[i].name = cli_options[i].name;
+		long_opts[i].has_arg = cli_options[i].has_arg ?
+				       required_argument : no_argument;
+		long_opts[i].val = CLI_OPT_BASE + (int)i;
+	}
 
 	if (argc < 2)
 		return bad(err, errlen, "no command given");
@@ -307,150 +536,19 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	optind = 2;
 	opterr = 0;
 	while ((opt = getopt_long(argc, argv, "", long_opts, NULL)) != -1) {
-		if (opt == '?') {
+		if (opt < CLI_OPT_BASE || opt >= CLI_OPT_BASE + (int)CLI_N_OPTIONS) {
 			if (optopt)
 				return bad(err, errlen, "option needs a value or is unknown: %s",
 					   argv[optind - 1]);
 			return bad(err, errlen, "unknown option %s", argv[optind - 1]);
 		}
-		if (!option_allowed(o->command, opt))
+		spec = &cli_options[opt - CLI_OPT_BASE];
+		if (!(spec->commands & CMD(o->command)))
 			return bad(err, errlen, "%s does not take --%s",
-				   commands[o->command], option_name(opt));
-		switch (opt) {
-		case OPT_RECORD:
-			if (!*optarg)
-				return bad(err, errlen, "--record needs a path");
-			o->record_path = optarg;
-			break;
-		case OPT_BACKEND:
-			if (!strcmp(optarg, "sim"))
-				o->backend = CLI_BACKEND_SIM;
-			else if (!strcmp(optarg, "raw"))
-				o->backend = CLI_BACKEND_RAW;
-			else if (!strcmp(optarg, "iio"))
-				o->backend = CLI_BACKEND_IIO;
-			else
-				return bad(err, errlen, "unknown backend \"%s\" (sim, raw or iio)",
-					   optarg);
-			backend_given = true;
-			break;
-		case OPT_SOCKET:
-			if (!*optarg)
-				return bad(err, errlen, "--socket needs a path");
-			o->socket_path = optarg;
-			break;
-		case OPT_SOCKET_MODE:
-			if (parse_mode(optarg, &o->socket_mode))
-				return bad(err, errlen, "--socket-mode takes an octal mode such as 0660, not \"%s\"",
-					   optarg);
-			break;
-		case OPT_SOCKET_GROUP:
-			o->socket_group = optarg;
-			break;
-		case OPT_I2C_DEV:
-			o->raw.i2c_dev = optarg;
-			break;
-		case OPT_I2C_ADDRESS:
-			if (parse_address(optarg, &o->raw.address))
-				return bad(err, errlen, "--i2c-address takes 0x0c..0x0f, not \"%s\"",
-					   optarg);
-			break;
-		case OPT_GPIOCHIP:
-			o->raw.gpiochip = optarg;
-			break;
-		case OPT_RSTN_LINE:
-		case OPT_INT1_LINE:
-		case OPT_INT2_LINE:
-			if (cli_parse_fixed(optarg, 0, 0, 4095, &v))
-				return bad(err, errlen, "%s takes a line offset 0..4095, not \"%s\"",
-					   argv[optind - 2], optarg);
-			*(opt == OPT_RSTN_LINE ? &o->raw.rstn :
-			  opt == OPT_INT1_LINE ? &o->raw.int1 : &o->raw.int2) = (int)v;
-			break;
-		case OPT_UNIT:
-			o->unit_path = optarg;
-			break;
-		case OPT_SIM_CLOCK:
-			if (!strcmp(optarg, "virtual"))
-				o->virtual_clock = true;
-			else if (strcmp(optarg, "real"))
-				return bad(err, errlen, "--sim-clock takes real or virtual, not \"%s\"",
-					   optarg);
-			break;
-		case OPT_JSON:
-			o->json = true;
-			break;
-		case OPT_SAMPLES:
-			if (cli_parse_fixed(optarg, 0, AS9888_SAMPLES_MIN,
-					    AS9888_SAMPLES_MAX, &v))
-				return bad(err, errlen, "--samples takes an integer %d..%d, not \"%s\"",
-					   AS9888_SAMPLES_MIN, AS9888_SAMPLES_MAX,
-					   optarg);
-			o->ftest.samples = (uint32_t)v;
-			break;
-		case OPT_PERMISSIBLE_ERROR:
-			/* LSB with up to 3 decimals, 0.001..100 */
-			if (cli_parse_fixed(optarg, 3, 1, 100000, &v))
-				return bad(err, errlen, "--permissible-error takes LSB in 0.001..100, not \"%s\"",
-					   optarg);
-			o->ftest.permissible_error_q16 =
-				(uint32_t)((v * AS9888_Q16_ONE + 500) / 1000);
-			break;
-		case OPT_FLUCTUATION:
-			if (cli_parse_fixed(optarg, 0, 0, 4095, &v))
-				return bad(err, errlen, "--fluctuation takes an integer 0..4095, not \"%s\"",
-					   optarg);
-			o->ftest.fluctuation = (uint32_t)v;
-			o->fluctuation_given = true;
-			break;
-		case OPT_LPF:
-			o->ftest.lpf = true;
-			break;
-		case OPT_GRAVITY:
-			if (parse_gravity(optarg, o->ftest.gravity))
-				return bad(err, errlen, "--gravity takes x+ x- y+ y- z+ z-, not \"%s\"",
-					   optarg);
-			o->ftest.gravity_given = true;
-			break;
-		case OPT_STABLE_TIMEOUT:
-			if (cli_parse_fixed(optarg, 0, 0, 600000, &v))
-				return bad(err, errlen, "--stable-timeout takes milliseconds 0..600000, not \"%s\"",
-					   optarg);
-			o->ftest.stable_timeout_ms = (uint32_t)v;
-			break;
-		case OPT_STATE_GROUP:
-			if (!*optarg)
-				return bad(err, errlen, "--state-group needs a group name");
-			o->state_group = optarg;
-			break;
-		case OPT_LOCK_TIMEOUT:
-			if (cli_parse_fixed(optarg, 0, 0, 3600, &v))
-				return bad(err, errlen, "--lock-timeout takes seconds 0..3600, not \"%s\"",
-					   optarg);
-			o->lock_timeout_s = (unsigned int)v;
-			break;
-		case OPT_KEEP_GOING:
-			o->ftest.keep_going = true;
-			break;
-		case OPT_JUNIT:
-			if (!*optarg)
-				return bad(err, errlen, "--junit needs a path");
-			o->junit_path = optarg;
-			break;
-		case OPT_TEMPERATURE:
-			if (cli_parse_fixed(optarg, 3, -30000, 85000, &v))
-				return bad(err, errlen, "--temperature takes degrees Celsius -30..85, not \"%s\"",
-					   optarg);
-			o->temperature_given = true;
-			o->temperature_mdegc = (int32_t)v;
-			break;
-		case OPT_VERBOSE:
-			o->verbose = true;
-			break;
-		case OPT_HELP:
-			o->command = CLI_HELP;
-			break;
-		}
+				   commands[o->command], spec->name);
+		ret = spec->apply(o, optarg, err, errlen);
+		if (ret)
+			return ret;
 	}
 	if (o->command == CLI_REQUEST && optind < argc)
 		o->request = argv[optind++];
@@ -458,7 +556,7 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 		return bad(err, errlen, "request needs what to ask: status, check, recalibrate or rollback");
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
-	if (!backend_given)
+	if (!o->backend_given)
 		pick_backend(o);
 	if (o->backend == CLI_BACKEND_RAW && (o->unit_path || o->virtual_clock))
 		return bad(err, errlen, "--unit and --sim-clock are for --backend sim");

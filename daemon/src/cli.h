@@ -65,6 +65,7 @@ enum cli_command {
  * @request:		what "request" asks the daemon
  * @lock_timeout_s:	longest wait for the record's lock
  * @state_group:	group trusted to write the record's files (NULL: none)
+ * @backend_given:	--backend was given
  * @backend_auto:	@backend was picked, not given by --backend
  * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
  * @junit_path:		factory-test: also write the report as JUnit XML there
@@ -88,6 +89,7 @@ struct cli_opts {
 	const char *request;
 	unsigned int lock_timeout_s;
 	const char *state_group;
+	bool backend_given;
 	bool backend_auto;
 	char backend_why[CLI_BACKEND_WHY_LEN];
 	const char *junit_path;
