@@ -84,7 +84,7 @@ static int restore_iio(const struct cli_opts *o)
 			IIO_DEVICE_NAME);
 		return EXIT_FAILURE;
 	}
-	if (iio_restore(o->record_path, dir))
+	if (iio_restore(o->record_path, dir, false))
 		return EXIT_FAILURE;
 	if (o->verbose)
 		printf("restored %s to %s\n", o->record_path, dir);

@@ -104,7 +104,7 @@ int cmd_rollback(const struct cli_opts *o)
 		char dir[IIO_PATH_MAX];
 
 		if (iio_find_device(NULL, dir, sizeof(dir)) ||
-		    iio_restore(o->record_path, dir)) {
+		    iio_restore(o->record_path, dir, false)) {
 			fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device\n");
 			return EXIT_FAILURE;
 		}

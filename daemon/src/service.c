@@ -189,8 +189,10 @@ static int run_request(int fd, struct service *s, void *arg)
 
 static int run_apply(int fd, struct service *s, void *arg)
 {
-	return iio_restore(s->o->record_path, s->apply_dev) ? EXIT_FAILURE :
-							       EXIT_SUCCESS;
+	bool simulator = s->o->backend == CLI_BACKEND_SIM;
+
+	return iio_restore(s->o->record_path, s->apply_dev, simulator) ?
+	       EXIT_FAILURE : EXIT_SUCCESS;
 }
 
 static void client_close(struct client *c)

@@ -354,12 +354,18 @@ bool session_store_result(const struct cli_opts *o, struct ftest_result *res,
  * Here, not in iio.c, so that the driver's sysfs layer does not depend on
  * the commands' record handling.
  */
-int iio_restore(const char *record_path, const char *dir)
+int iio_restore(const char *record_path, const char *dir,
+		bool allow_simulated)
 {
 	struct calib_record rec;
 
 	if (session_load_record(record_path, &rec))
 		return -EINVAL;
+	if (rec.simulated && !allow_simulated) {
+		fprintf(stderr, "as9888-calibd: %s was written by a factory test on the simulator (source = simulator), not on this chip: a simulated calibration is never applied to a real one. Run factory-test on this unit; nothing applied\n",
+			record_path);
+		return -EPERM;
+	}
 
 	return iio_apply_checked(dir, &rec, record_path);
 }

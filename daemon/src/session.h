@@ -66,8 +66,11 @@ int session_lock(const char *path, unsigned int timeout_s);
 
 /*
  * Apply the record at @record_path to the AS9888 IIO device at @dir: the
- * chip must be the record's (EEPROM). 0 or -errno, said on stderr.
+ * chip must be the record's (EEPROM), and a record made on the simulator
+ * ("source = simulator") is refused unless @allow_simulated (the caller
+ * itself runs on the simulator). 0 or -errno, said on stderr.
  */
-int iio_restore(const char *record_path, const char *dir);
+int iio_restore(const char *record_path, const char *dir,
+		bool allow_simulated);
 
 #endif

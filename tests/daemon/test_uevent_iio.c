@@ -99,17 +99,24 @@ static const struct calib_record test_record = {
 	.created = 1795305600,
 };
 
-static void write_record(const struct fake_sysfs *f, const char *path,
-			 const uint8_t *eeprom)
+static void write_record_from(const struct fake_sysfs *f, const char *path,
+			      const uint8_t *eeprom, bool simulated)
 {
 	struct calib_record rec = test_record;
 	char buf[RECORD_MAX_SIZE];
 	int len;
 
 	memcpy(rec.eeprom, eeprom, AS9888_EEPROM_LEN);
+	rec.simulated = simulated;
 	len = record_format(&rec, buf, sizeof(buf));
 	assert_true(len > 0);
 	fake_put_bytes(f->root, path, buf, (size_t)len);
+}
+
+static void write_record(const struct fake_sysfs *f, const char *path,
+			 const uint8_t *eeprom)
+{
+	write_record_from(f, path, eeprom, false);
 }
 
 static void find_device(void **state)
@@ -150,7 +157,7 @@ static void restore_applies(void **state)
 	fake_reset_calibration(f);
 	write_record(f, "cal", fake_example_eeprom);
 	snprintf(path, sizeof(path), "%s/cal", f->root);
-	assert_int_equal(iio_restore(path, f->dev), 0);
+	assert_int_equal(iio_restore(path, f->dev, false), 0);
 	/* X: EAXGA 0x1c, DAC 0x0f -> linear -15; Y polarity: 0x8e -> -14 */
 	expect(f, "in_accel_x_calibbias", "-15");
 	expect(f, "in_accel_y_calibbias", "-14");
@@ -180,9 +187,28 @@ static void restore_refuses_other_chip(void **state)
 	fake_reset_calibration(f);
 	write_record(f, "other", other);
 	snprintf(path, sizeof(path), "%s/other", f->root);
-	assert_int_equal(iio_restore(path, f->dev), -ENODEV);
+	assert_int_equal(iio_restore(path, f->dev, false), -ENODEV);
 	expect(f, "in_accel_x_caliboffset", "0.000000\n");
 	expect(f, "in_accel_calibtemp", "23750\n");
+}
+
+/*
+ * A simulator's record is never applied to the driver (restore, rollback,
+ * the daemon), unless the caller itself runs on the simulator
+ */
+static void restore_refuses_simulated_record(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char path[256];
+
+	fake_reset_calibration(f);
+	write_record_from(f, "sim", fake_example_eeprom, true);
+	snprintf(path, sizeof(path), "%s/sim", f->root);
+	assert_int_equal(iio_restore(path, f->dev, false), -EPERM);
+	expect(f, "in_accel_x_caliboffset", "0.000000\n");
+	expect(f, "in_accel_calibtemp", "23750\n");
+	assert_int_equal(iio_restore(path, f->dev, true), 0);
+	expect(f, "in_accel_calibtemp", "24583");
 }
 
 /* A record whose level data give no calibration changes nothing */
@@ -314,6 +340,7 @@ int main(void)
 		cmocka_unit_test(find_device),
 		cmocka_unit_test(restore_applies),
 		cmocka_unit_test(restore_refuses_other_chip),
+		cmocka_unit_test(restore_refuses_simulated_record),
 		cmocka_unit_test(apply_refuses_uncomputable_record),
 		cmocka_unit_test(apply_reports_write_failure),
 		cmocka_unit_test(read_calibration),
