@@ -1399,6 +1399,7 @@ static bool as9888_fill_scan(struct as9888_data *data,
 {
 	unsigned int bit, i = 0;
 	s16 *chan;
+	int ret;
 
 	lockdep_assert_held(&data->lock);
 
@@ -1413,9 +1414,14 @@ static bool as9888_fill_scan(struct as9888_data *data,
 		chan = &data->scan.chans[i++];
 		switch (bit) {
 		case AS9888_SCAN_ACCEL_X ... AS9888_SCAN_ACCEL_Z:
-			if (as9888_accel_out(data, s, bit - AS9888_SCAN_ACCEL_X,
-					     chan))
+			ret = as9888_accel_out(data, s,
+					       bit - AS9888_SCAN_ACCEL_X, chan);
+			if (ret) {
+				dev_err_ratelimited(data->dev,
+						    "cannot compensate a sample: %d\n",
+						    ret);
 				return false;
+			}
 			break;
 		case AS9888_SCAN_MAGN_X ... AS9888_SCAN_MAGN_Z:
 			*chan = le16_to_cpu(s->magn[bit - AS9888_SCAN_MAGN_X]);
