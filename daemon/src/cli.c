@@ -368,6 +368,19 @@ static int apply_lock_timeout(struct cli_opts *o, const char *arg, char *err,
 	return 0;
 }
 
+static int apply_busy_timeout(struct cli_opts *o, const char *arg, char *err,
+			      size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 0, 0, FTEST_BUSY_TIMEOUT_S_MAX, &v))
+		return bad(err, errlen, "--busy-timeout takes seconds 0..%d, not \"%s\"",
+			   FTEST_BUSY_TIMEOUT_S_MAX, arg);
+	o->ftest.busy_timeout_ms = (uint32_t)v * 1000;
+
+	return 0;
+}
+
 static int apply_state_group(struct cli_opts *o, const char *arg, char *err,
 			     size_t errlen)
 {
@@ -435,6 +448,7 @@ static const struct cli_option cli_options[] = {
 	{ "lpf", false, CMDS_LEVEL, apply_lpf },
 	{ "gravity", true, CMDS_LEVEL, apply_gravity },
 	{ "stable-timeout", true, CMDS_LEVEL, apply_stable_timeout },
+	{ "busy-timeout", true, CMDS_LEVEL, apply_busy_timeout },
 	{ "permissible-error", true, CMD(CLI_FACTORY_TEST), apply_permissible_error },
 	{ "keep-going", false, CMD(CLI_FACTORY_TEST), apply_keep_going },
 	{ "junit", true, CMD(CLI_FACTORY_TEST), apply_junit },

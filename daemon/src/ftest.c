@@ -741,6 +741,7 @@ void ftest_opts_default(struct ftest_opts *o)
 	o->samples = AS9888_SAMPLES_MIN;
 	o->fluctuation = AS9888_FLUCTUATION_DEFAULT;
 	o->stable_timeout_ms = FTEST_STABLE_TIMEOUT_MS_DEFAULT;
+	o->busy_timeout_ms = FTEST_BUSY_TIMEOUT_MS_DEFAULT;
 }
 
 int ftest_engine_run(struct ftest_ctx *x)

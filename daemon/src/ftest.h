@@ -27,6 +27,9 @@
 /* Largest TMPS spread (codes) within one averaging run: 0.625 degC */
 #define FTEST_TMPS_SPREAD_MAX		1
 #define FTEST_STABLE_TIMEOUT_MS_DEFAULT	10000
+/* How long the test through the driver waits for another program's capture */
+#define FTEST_BUSY_TIMEOUT_MS_DEFAULT	30000
+#define FTEST_BUSY_TIMEOUT_S_MAX	3600
 /* Field recalibration: stricter than the factory */
 #define FTEST_USER_FLUCTUATION		8
 #define FTEST_USER_TILT_DEG		10
@@ -41,6 +44,8 @@
  * @gravity:		direction of gravity in the sensor frame
  * @keep_going:		go on after a failed judgment
  * @stable_timeout_ms:	how long to wait for a stable temperature
+ * @busy_timeout_ms:	how long to wait for another program to stop
+ *			capturing from the IIO device (--backend iio)
  * @level_only:		skip step 2 (field recalibration and checks)
  * @user_mode:		a product user runs it: stricter conditions (still,
  *			flat within FTEST_USER_TILT_DEG) and plain messages
@@ -57,6 +62,7 @@ struct ftest_opts {
 	int8_t gravity[AS9888_AXES];
 	bool keep_going;
 	uint32_t stable_timeout_ms;
+	uint32_t busy_timeout_ms;
 	bool level_only;
 	bool user_mode;
 	bool measure_only;

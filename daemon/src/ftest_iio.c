@@ -48,6 +48,7 @@
 #include "accel_raw.h"
 #include "ftest_internal.h"
 #include "iio.h"
+#include "iio_busy.h"
 #include "iio_scan.h"
 #include "iio_value.h"
 
@@ -229,7 +230,6 @@ static int iio_step1(struct ftest_ctx *x)
 	struct iio_test_dev *d = x->dev;
 	const uint8_t *dac;
 	uint8_t raw[AS9888_EEPROM_LEN], want[AS9888_AXES];
-	char val[IIO_ATTR_MAX];
 	bool same;
 	int axis, ret;
 
@@ -238,17 +238,28 @@ static int iio_step1(struct ftest_ctx *x)
 	ftest_judge(x, "1-4", "device ID (WIA)", true, "0x48",
 		    "checked by the driver when it bound to %s", d->dir);
 
-	/* the test takes the buffer: never from another program */
-	ret = iio_read_attr(d->dir, "buffer/enable", val, sizeof(val));
-	if (ret < 0)
-		return ftest_io_failed(x, "1-4.free", "buffer/enable", ret);
-	if (!ftest_judge(x, "1-4.free", "device free for the test", !strcmp(val, "0"),
-			 "buffer not enabled", "%s%s", d->dir,
-			 strcmp(val, "0") ?
-			 ": another program is capturing from it; stop that first" : "")) {
+	/*
+	 * The test takes the buffer, never from another program: a capture
+	 * that is under way gets its turn first, for a bounded time
+	 */
+	ret = iio_wait_buffer_free(d->dir, x->o->busy_timeout_ms, IIO_BUSY_POLL_MS);
+	if (ret == -EBUSY) {
+		char who[IIO_ERR_LEN];
+
+		if (iio_chardev_holders("/proc", d->chardev, who, sizeof(who)) <= 0)
+			snprintf(who, sizeof(who),
+				 "no process this user can see");
+		ftest_judge(x, "1-4.free", "device free for the test", false,
+			    "buffer not enabled",
+			    "%s busy for %u s: stop the program holding it, or raise --busy-timeout; holder: %s",
+			    d->chardev, x->o->busy_timeout_ms / 1000, who);
 		x->stop = true;
 		return -EBUSY;
 	}
+	if (ret < 0)
+		return ftest_io_failed(x, "1-4.free", "buffer/enable", ret);
+	ftest_judge(x, "1-4.free", "device free for the test", true,
+		    "buffer not enabled", "%s", d->dir);
 
 	ret = iio_read_eeprom(d->dir, raw);
 	if (ret)

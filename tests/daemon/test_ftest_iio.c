@@ -6,6 +6,8 @@
  * so the first level run fails. Every attribute the test changed must be
  * put back, and a calibration the driver reports in a form the daemon
  * cannot use must stop the test with a message that says which and why.
+ * A buffer another program keeps enabled past --busy-timeout stops the
+ * test at 1-4 with a message that says what to do, and changes nothing.
  */
 #include <errno.h>
 #include <setjmp.h>
@@ -118,15 +120,22 @@ static const struct judgment *find(const struct report *r, const char *step,
 	return NULL;
 }
 
-static void run(const struct fake_sysfs *f, struct ftest_result *res)
+static void run_for(const struct fake_sysfs *f, struct ftest_result *res,
+		    uint32_t busy_timeout_ms)
 {
 	struct ftest_opts o;
 
 	ftest_opts_default(&o);
+	o.busy_timeout_ms = busy_timeout_ms;
 	o.level_only = true;
 	o.lpf = true;
 	memset(res, 0, sizeof(*res));
 	assert_true(ftest_run_iio(f->dev, &o, res) < 0);
+}
+
+static void run(const struct fake_sysfs *f, struct ftest_result *res)
+{
+	run_for(f, res, FTEST_BUSY_TIMEOUT_MS_DEFAULT);
 }
 
 static void attributes_put_back(void **state)
@@ -174,11 +183,37 @@ static void unusable_calibration_stops(void **state)
 	fake_reset_calibration(f);
 }
 
+static void held_buffer_stops(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+	char buf[64];
+
+	put_initial(f);
+	fake_put(f->dev, "buffer/enable", "1\n");
+	run_for(f, &res, 0);
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_string_equal(j->step, "1-4");
+	assert_string_equal(j->name, "device free for the test");
+	if (!strstr(j->measured, "busy for 0 s: stop the program holding it") ||
+	    !strstr(j->measured, "--busy-timeout"))
+		fail_msg("unclear: %s", j->measured);
+	/* nothing was touched: the calibration and the DAC are as found */
+	fake_get(f->dev, "in_accel_y_calibbias", buf, sizeof(buf));
+	buf[strcspn(buf, "\n")] = '\0';
+	assert_string_equal(buf, "5");
+	ftest_result_free(&res);
+	put_initial(f);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(attributes_put_back),
 		cmocka_unit_test(unusable_calibration_stops),
+		cmocka_unit_test(held_buffer_stops),
 	};
 
 	return cmocka_run_group_tests_name("ftest-iio", tests, setup,
