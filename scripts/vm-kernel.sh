@@ -109,7 +109,13 @@ build_modules() {
 	stage="$VM_DIR/mod-$k"
 	mlog="$LOG_DIR/vm-modules-$k.log"
 	t=$(now)
+	# objects of a kernel built with another configuration are stale even
+	# where kbuild's dependencies miss it (a struct that grew a field)
+	if [ "$(cat "$stage/.kernel-id" 2>/dev/null)" != "$(cat "$STAMP_DIR/vm-kernel-$k")" ]; then
+		rm -rf "$stage"
+	fi
 	mkdir -p "$stage"
+	cp "$STAMP_DIR/vm-kernel-$k" "$stage/.kernel-id"
 	rsync -a --delete --exclude='*.o' --exclude='*.ko' --exclude='*.cmd' \
 		--exclude='*.mod*' --exclude='modules.order' --exclude='Module.symvers' \
 		--exclude='ko/' \
