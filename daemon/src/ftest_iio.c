@@ -59,8 +59,17 @@
 #define IIO_TEST_RATE_HZ	100
 /* Buffer length during the test, in samples */
 #define IIO_TEST_BUFFER_LEN	"256"
-/* How late the last of a run's samples may be */
-#define IIO_SAMPLE_SLACK_MS	1000
+/*
+ * The longest wait for the next sample: longer means the capture stalled.
+ * A busy system only slows a run down; it does not fail it
+ */
+#define IIO_SAMPLE_STALL_MS	2000
+/*
+ * How often a level run starts again after another program turned the
+ * buffer off under it (libiio's local backend does so as a client starts,
+ * before it finds the device taken)
+ */
+#define IIO_RETAKE_MAX		2
 #define IIO_SAVED_MAX		32
 #define IIO_NAME_MAX		64
 #define IIO_SCAN_CHANNELS	4
@@ -225,6 +234,26 @@ static int find_trigger(struct iio_test_dev *d)
 	return ret;
 }
 
+/*
+ * Another program holds the buffer or the character device: the test
+ * stops, naming the holders and what to do
+ */
+static int device_taken(struct ftest_ctx *x, const char *step,
+			const char *name, const char *limits)
+{
+	struct iio_test_dev *d = x->dev;
+	char who[IIO_ERR_LEN];
+
+	if (iio_chardev_holders("/proc", d->chardev, who, sizeof(who)) <= 0)
+		snprintf(who, sizeof(who), "no process this user can see");
+	ftest_judge(x, step, name, false, limits,
+		    "%s busy for %u s: stop the program holding it, or raise --busy-timeout; holder: %s",
+		    d->chardev, x->o->busy_timeout_ms / 1000, who);
+	x->stop = true;
+
+	return -EBUSY;
+}
+
 static int iio_step1(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
@@ -243,19 +272,9 @@ static int iio_step1(struct ftest_ctx *x)
 	 * that is under way gets its turn first, for a bounded time
 	 */
 	ret = iio_wait_buffer_free(d->dir, x->o->busy_timeout_ms, IIO_BUSY_POLL_MS);
-	if (ret == -EBUSY) {
-		char who[IIO_ERR_LEN];
-
-		if (iio_chardev_holders("/proc", d->chardev, who, sizeof(who)) <= 0)
-			snprintf(who, sizeof(who),
-				 "no process this user can see");
-		ftest_judge(x, "1-4.free", "device free for the test", false,
-			    "buffer not enabled",
-			    "%s busy for %u s: stop the program holding it, or raise --busy-timeout; holder: %s",
-			    d->chardev, x->o->busy_timeout_ms / 1000, who);
-		x->stop = true;
-		return -EBUSY;
-	}
+	if (ret == -EBUSY)
+		return device_taken(x, "1-4.free", "device free for the test",
+				    "buffer not enabled");
 	if (ret < 0)
 		return ftest_io_failed(x, "1-4.free", "buffer/enable", ret);
 	ftest_judge(x, "1-4.free", "device free for the test", true,
@@ -451,27 +470,14 @@ static int read_compensation(struct ftest_ctx *x)
 	return 0;
 }
 
-static int iio_level_setup(struct ftest_ctx *x)
+/* The buffer as the test uses it: its channels, trigger, length and rate */
+static int buffer_setup(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
 	char rate[IIO_NAME_MAX];
 	int ret;
 
 	snprintf(rate, sizeof(rate), "%d", IIO_TEST_RATE_HZ);
-
-	ret = change_attr(d, IIO_OVERSAMPLING_ATTR,
-			  x->o->lpf ? IIO_OVERSAMPLING_ALPF : IIO_OVERSAMPLING_OFF);
-	if (ret)
-		return ftest_io_failed(x, "3-1", IIO_OVERSAMPLING_ATTR, ret);
-	ret = read_compensation(x);
-	if (ret)
-		return ret;
-	if (!ftest_judge(x, "3-1.trigger", "data-ready trigger", !find_trigger(d),
-			 "the driver's INT1 trigger exists",
-			 *d->trigger ? "%s" :
-			 "none: INT1 is not wired to the driver (%s); use --backend raw",
-			 *d->trigger ? d->trigger : d->dir))
-		return -ENODEV;
 	ret = setup_scan(x);
 	if (ret)
 		return ret;
@@ -486,17 +492,40 @@ static int iio_level_setup(struct ftest_ctx *x)
 	return 0;
 }
 
+static int iio_level_setup(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	int ret;
+
+	ret = change_attr(d, IIO_OVERSAMPLING_ATTR,
+			  x->o->lpf ? IIO_OVERSAMPLING_ALPF : IIO_OVERSAMPLING_OFF);
+	if (ret)
+		return ftest_io_failed(x, "3-1", IIO_OVERSAMPLING_ATTR, ret);
+	ret = read_compensation(x);
+	if (ret)
+		return ret;
+	ret = find_trigger(d);
+	if (!ftest_judge(x, "3-1.trigger", "data-ready trigger", !ret,
+			 "the driver's INT1 trigger exists",
+			 *d->trigger ? "%s" :
+			 "none: INT1 is not wired to the driver (%s); use --backend raw",
+			 *d->trigger ? d->trigger : d->dir))
+		return -ENODEV;
+
+	return buffer_setup(x);
+}
+
 /*
- * Read @n samples from @fd into @r, at most until @deadline, each taken
- * back to the chip's own output: -ERANGE with @why for a sample that
- * cannot be
+ * Read @n samples from @fd into @r, each taken back to the chip's own
+ * output: -ERANGE with @why for a sample that cannot be, -ETIMEDOUT when
+ * no sample comes for IIO_SAMPLE_STALL_MS
  */
 static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
-			uint64_t deadline, struct level_run *r, char *why,
-			size_t whylen)
+			struct level_run *r, char *why, size_t whylen)
 {
 	struct iio_test_dev *d = x->dev;
 	uint8_t buf[IIO_SCAN_CHANNELS * sizeof(uint32_t)];
+	uint64_t deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
 	size_t have = 0;
 
 	while (r->n < n) {
@@ -524,6 +553,7 @@ static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
 		if (have < d->sample_bytes)
 			continue;
 		have = 0;
+		deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
 		for (axis = 0; axis < AS9888_AXES; axis++)
 			out[axis] = (int16_t)iio_scan_value(&d->layout[axis], buf);
 		s.tmps = (uint8_t)iio_scan_value(&d->layout[AS9888_AXES], buf);
@@ -535,33 +565,69 @@ static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
 	return 0;
 }
 
-static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
-			     struct level_run *r)
+/*
+ * One capture of @n samples into @r: -ETIMEDOUT when it stalls, with
+ * *@taken set when the buffer was found off (another program turned it off)
+ */
+static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
+			struct level_run *r, char *why, size_t whylen,
+			bool *taken)
 {
 	struct iio_test_dev *d = x->dev;
-	uint64_t start = iio_now_ns(x);
-	char id[JUDGMENT_ID_LEN];
-	uint64_t deadline = start + (uint64_t)n * 1000000000ULL / IIO_TEST_RATE_HZ +
-			    IIO_SAMPLE_SLACK_MS * NS_PER_MS;
-	char why[JUDGMENT_TEXT_LEN];
+	char val[IIO_ATTR_MAX];
 	int fd, ret;
 
 	level_run_init(r);
-	memcpy(d->comp.da, x->dac, AS9888_AXES);
 	r->status_by_driver = true;
-	if (d->sample_bytes > IIO_SCAN_CHANNELS * sizeof(uint32_t))
-		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
+	*taken = false;
+	/* a program that took the device since step 1-4 stops the test too */
 	fd = open(d->chardev, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	if (fd < 0 && errno == EBUSY)
+		return device_taken(x, step, "character device free", "not open elsewhere");
 	if (fd < 0)
 		return ftest_io_failed(x, step, d->chardev, -errno);
 	ret = iio_write_attr(d->dir, "buffer/enable", "1");
 	if (ret) {
 		close(fd);
+		if (ret == -EBUSY)
+			return device_taken(x, step, "buffer free", "not enabled elsewhere");
 		return ftest_io_failed(x, step, "buffer/enable", ret);
 	}
-	ret = read_samples(x, fd, n, deadline, r, why, sizeof(why));
+	ret = read_samples(x, fd, n, r, why, whylen);
+	if (ret == -ETIMEDOUT &&
+	    iio_read_attr(d->dir, "buffer/enable", val, sizeof(val)) > 0)
+		*taken = !strcmp(val, "0");
 	iio_write_attr(d->dir, "buffer/enable", "0");
 	close(fd);
+
+	return ret;
+}
+
+static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
+			     struct level_run *r)
+{
+	struct iio_test_dev *d = x->dev;
+	char id[JUDGMENT_ID_LEN];
+	char why[JUDGMENT_TEXT_LEN];
+	unsigned int retakes = 0;
+	bool taken;
+	int ret;
+
+	memcpy(d->comp.da, x->dac, AS9888_AXES);
+	if (d->sample_bytes > IIO_SCAN_CHANNELS * sizeof(uint32_t))
+		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
+	for (;;) {
+		ret = collect_once(x, n, step, r, why, sizeof(why), &taken);
+		if (ret != -ETIMEDOUT || !taken || retakes == IIO_RETAKE_MAX)
+			break;
+		/* the run starts again with the test's own set-up */
+		retakes++;
+		ret = buffer_setup(x);
+		if (ret)
+			return ret;
+	}
+	if (x->stop)
+		return ret;
 
 	if (ret == -ERANGE) {
 		ftest_judge(x, step, "chip's own reading recovered", false,
@@ -571,12 +637,19 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 		return ret;
 	}
 	snprintf(id, sizeof(id), "%s.delivered", step);
+	if (ret == -ETIMEDOUT && taken) {
+		ftest_judge(x, id, "buffer kept for the run", false,
+			    "no other program turns it off",
+			    "another program turned the buffer off %u times (libiio clients do as they start): stop it and run again",
+			    retakes + 1);
+		x->stop = true;
+		return ret;
+	}
 	if (ret == -ETIMEDOUT) {
 		ftest_judge(x, id, "samples delivered (INT1, ST1, EMPT)", false,
 			    "N samples from the data-ready trigger",
-			    "%u of %u within %llu ms: INT1 silent or samples failing the driver's checks (see the kernel log)",
-			    r->n, n,
-			    (unsigned long long)((iio_now_ns(x) - start) / NS_PER_MS));
+			    "%u of %u, then none for %u ms: INT1 silent or samples failing the driver's checks (see the kernel log)",
+			    r->n, n, IIO_SAMPLE_STALL_MS);
 		x->stop = true;
 		return ret;
 	}
@@ -613,7 +686,11 @@ static void iio_finish(struct ftest_ctx *x)
 	struct iio_test_dev *d = x->dev;
 	unsigned int i;
 
-	iio_write_attr(d->dir, "buffer/enable", "0");
+	/*
+	 * Each level run turned its own capture off; the buffer is not
+	 * touched here: when the test stopped because another program was
+	 * capturing, that capture goes on
+	 */
 	for (i = 0; i < d->n_saved; i++) {
 		const struct saved_attr *a = &d->saved[i];
 

@@ -76,6 +76,11 @@
 #define AS9888_AUTOSUSPEND_MS		2000
 /* Attempts to start the next measurement of a data-ready triggered buffer */
 #define AS9888_START_RETRIES		3
+/*
+ * How long an offset DAC write waits for the data-ready triggered buffer's
+ * next gap between samples, beyond two sampling periods
+ */
+#define AS9888_DAC_WAIT_SLACK_MS	2000
 
 #define AS9888_SAMP_FREQ_DEFAULT	100
 
@@ -155,6 +160,7 @@ struct as9888_selftest {
  * @drdy:	completed by INT1 for measurements waited for synchronously
  * @stop_wq:	wakes a data-ready triggered buffer that waits for its next
  *		sampling period when the buffer stops
+ * @dac_wq:	wakes offset DAC writers when their pending value is written
  * @drdy_time:	ktime of the last INT1 edge (the chip entered power-down)
  * @drdy_ts:	IIO timestamp of the last INT1 edge
  * @trig_running: the data-ready triggered buffer is running; written under
@@ -172,6 +178,11 @@ struct as9888_selftest {
  * @trig_slot:	when the data-ready trigger's current sample was due; the
  *		next one is due a period later, so lateness does not add up
  * @trig_resume: @trig_running was set when the system suspended
+ * @dac_pending: axes whose offset DAC value waits in @dac_val for the
+ *		data-ready triggered buffer's next gap between two samples
+ * @dac_val:	those DAC register values
+ * @dac_err:	per axis, the result of writing the last pending value
+ * @dac_flushes: how many times the pending values were written
  * @scan_mask:	channels of the buffer's scan
  * @buf_men:	the buffer's scan includes a magnetometer channel
  * @alpf:	accelerometer low-pass filter enabled
@@ -193,6 +204,7 @@ struct as9888_data {
 	int irq;
 	struct completion drdy;
 	wait_queue_head_t stop_wq;
+	wait_queue_head_t dac_wq;
 	ktime_t drdy_time;
 	s64 drdy_ts;
 	bool trig_running;
@@ -203,6 +215,10 @@ struct as9888_data {
 	ktime_t last_start;
 	ktime_t trig_slot;
 	bool trig_resume;
+	unsigned long dac_pending;
+	u8 dac_val[AS9888_AXES];
+	int dac_err[AS9888_AXES];
+	unsigned int dac_flushes;
 	unsigned long scan_mask;
 	bool buf_men;
 	bool alpf;
@@ -648,17 +664,62 @@ static int as9888_read_calibbias(struct as9888_data *data, int axis, int *val)
 	return IIO_VAL_INT;
 }
 
-/*
- * The calibration is referred to the factory DAC values, so it stays valid
- * whatever the DAC holds: as9888_accel_out() accounts for the DAC in use.
- */
-static int as9888_set_calibbias(struct as9888_data *data, int axis, int lin)
+/* Write the DAC values that wait for a gap between two samples */
+static void as9888_flush_dac(struct as9888_data *data)
 {
-	u8 da = as9888_lin2dac(data->ee.axis[axis].ga, lin);
+	unsigned long axis;
 
 	lockdep_assert_held(&data->lock);
 
-	return as9888_write_trim(data, AS9888_REG_ADA(axis), &da, 1);
+	if (!data->dac_pending)
+		return;
+
+	for_each_set_bit(axis, &data->dac_pending, AS9888_AXES)
+		data->dac_err[axis] = as9888_write_trim(data,
+							AS9888_REG_ADA(axis),
+							&data->dac_val[axis], 1);
+	data->dac_pending = 0;
+	WRITE_ONCE(data->dac_flushes, data->dac_flushes + 1);
+	wake_up_all(&data->dac_wq);
+}
+
+/*
+ * While the data-ready triggered buffer runs, a measurement is nearly
+ * always in flight, and a trim write would abort it (the chip takes one in
+ * power-down only) and with it the next INT1 edge. The value waits instead
+ * for the gap between two samples (as9888_next_sample()) or for the buffer
+ * to stop. The calibration is referred to the factory DAC values, so it
+ * stays valid whatever the DAC holds: as9888_accel_out() compensates every
+ * later sample for the DAC in use. So a restore or a factory test can
+ * change the DAC under a client that keeps the buffer enabled, such as
+ * iio-sensor-proxy.
+ */
+static int as9888_queue_calibbias(struct as9888_data *data, int axis, u8 da)
+{
+	unsigned int period_ms, flushes;
+
+	scoped_guard(mutex, &data->lock) {
+		if (!data->trig_running)
+			return as9888_write_trim(data, AS9888_REG_ADA(axis),
+						 &da, 1);
+		data->dac_val[axis] = da;
+		data->dac_pending |= BIT(axis);
+		flushes = data->dac_flushes;
+		period_ms = DIV_ROUND_UP(MSEC_PER_SEC, data->samp_freq);
+	}
+
+	wait_event_timeout(data->dac_wq, READ_ONCE(data->dac_flushes) != flushes,
+			   msecs_to_jiffies(2 * period_ms +
+					    AS9888_DAC_WAIT_SLACK_MS));
+
+	guard(mutex)(&data->lock);
+	if (data->dac_flushes == flushes) {
+		/* The trigger stalled: take the value back */
+		data->dac_pending &= ~BIT(axis);
+		return -ETIMEDOUT;
+	}
+
+	return data->dac_err[axis];
 }
 
 static int as9888_write_calibbias(struct iio_dev *indio_dev, int axis,
@@ -674,8 +735,8 @@ static int as9888_write_calibbias(struct iio_dev *indio_dev, int axis,
 	if (ret)
 		return ret;
 
-	scoped_guard(mutex, &data->lock)
-		ret = as9888_set_calibbias(data, axis, lin);
+	ret = as9888_queue_calibbias(data, axis,
+				     as9888_lin2dac(data->ee.axis[axis].ga, lin));
 
 	pm_runtime_put_autosuspend(data->dev);
 
@@ -877,11 +938,8 @@ static int as9888_write_raw(struct iio_dev *indio_dev,
 
 	switch (mask) {
 	case IIO_CHAN_INFO_CALIBBIAS:
-		if (!iio_device_claim_direct(indio_dev))
-			return -EBUSY;
-		ret = as9888_write_calibbias(indio_dev, chan->address, val);
-		iio_device_release_direct(indio_dev);
-		return ret;
+		/* Also while buffering: see as9888_queue_calibbias() */
+		return as9888_write_calibbias(indio_dev, chan->address, val);
 	case IIO_CHAN_INFO_SAMP_FREQ:
 		return as9888_write_samp_freq(data, val);
 	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
@@ -1482,6 +1540,8 @@ static void as9888_next_sample(struct as9888_data *data)
 				     ns_to_ktime(wait_ns));
 
 	guard(mutex)(&data->lock);
+	/* The chip is in power-down between two samples: the DAC's turn */
+	as9888_flush_dac(data);
 	for (i = 0; i < AS9888_START_RETRIES && data->trig_running; i++) {
 		ret = as9888_start(data, AS9888_MS_SINGLE, data->buf_men);
 		if (!ret)
@@ -1547,13 +1607,18 @@ static int as9888_trig_start(struct as9888_data *data)
 
 static int as9888_trig_stop(struct as9888_data *data)
 {
+	int ret;
+
 	lockdep_assert_held(&data->lock);
 
 	WRITE_ONCE(data->trig_running, false);
 	wake_up(&data->stop_wq);
 
 	/* Abort a measurement in flight */
-	return as9888_power_down(data);
+	ret = as9888_power_down(data);
+	as9888_flush_dac(data);
+
+	return ret;
 }
 
 static int as9888_buffer_postenable(struct iio_dev *indio_dev)
@@ -1931,6 +1996,7 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 	data->samp_freq = AS9888_SAMP_FREQ_DEFAULT;
 	init_completion(&data->drdy);
 	init_waitqueue_head(&data->stop_wq);
+	init_waitqueue_head(&data->dac_wq);
 	dev_set_drvdata(dev, indio_dev);
 
 	ret = devm_mutex_init(dev, &data->lock);

@@ -115,7 +115,7 @@ busy scan_elements/in_magn_x_en 1
 busy buffer0/in_accel_y_en 1
 busy buffer/length 64
 busy trigger/current_trigger ""
-busy in_accel_x_calibbias 0
+# (calibbias is taken between two samples: 72-concurrency)
 busy in_accel_oversampling_ratio 1
 busy selftest 1
 echo 0 > $DEV/buffer/enable
