@@ -164,9 +164,12 @@ static int bind_socket(int fd, const struct sockaddr_un *addr, mode_t mode,
 		ret = bind(fd, (const struct sockaddr *)addr, sizeof(*addr));
 	}
 	umask(old);
-	if (ret)
-		return fail(err, errlen, errno, "cannot listen on %s: %s",
-			    addr->sun_path, strerror(errno));
+	if (ret) {
+		ret = errno;
+		return fail(err, errlen, ret, "cannot listen on %s: %s%s",
+			    addr->sun_path, strerror(ret), ret == EACCES ?
+			    ": run the daemon as root (its unit does), or give --socket a path in a directory you may write" : "");
+	}
 
 	return 0;
 }

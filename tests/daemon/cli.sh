@@ -164,6 +164,10 @@ as_user "$calibd" factory-test $vt --record "$work/rootdir/cal" >"$work/out" 2>"
 rc=$?
 check "record directory not writable: exit 1, permission denied: run as root" \
 	eval '[ $rc -eq 1 ] && says "$work/rootdir/cal.lock: Permission denied: run as root" err && [ ! -e "$work/rootdir/cal" ]'
+as_user "$calibd" daemon --backend sim --socket "$work/rootdir/sock" --record "$work/rootdir/cal" >"$work/out" 2>"$work/err"
+rc=$?
+check "daemon, socket directory not writable: exit 1, permission denied: run the daemon as root" \
+	eval '[ $rc -eq 1 ] && says "cannot listen on $work/rootdir/sock: Permission denied: run the daemon as root" err'
 python3 -c 'import socket, sys, time
 s = socket.socket(socket.AF_UNIX)
 s.bind(sys.argv[1])
