@@ -61,8 +61,8 @@ if [ ! -e "$rootfs/.as9888-complete" ]; then
 		bookworm "$rootfs" http://deb.debian.org/debian >"$cache/debootstrap.log" 2>&1 ||
 		die "debootstrap failed or took over 30 min (log $cache/debootstrap.log; network? a mirror in http_proxy?)"
 	# the image's version may be in bookworm-security only
-	(cd "$cache" && timeout 900 apt-get download "linux-image-$KVER" >/dev/null) ||
-		die "cannot download linux-image-$KVER (apt-get update? is it still in bookworm or bookworm-security?)"
+	(cd "$cache" && timeout 900 apt-get download "linux-image-$KVER" >"$cache/download.log" 2>&1) ||
+		die "cannot download linux-image-$KVER (log $cache/download.log; apt-get update? is it still in bookworm or bookworm-security?)"
 	cp "$cache"/linux-image-"$KVER"_*.deb "$rootfs/tmp/kernel.deb"
 	mount --bind /proc "$rootfs/proc"
 	chroot "$rootfs" dpkg -i /tmp/kernel.deb >"$cache/kernel-install.log" 2>&1 ||
