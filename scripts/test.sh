@@ -102,7 +102,8 @@ counted_run() {
 		awk '{ s += $1 } END { print s + 0 }')
 	fail=$(sed -n "s/^$prefix\([0-9]*\) passed, \([0-9]*\) failed.*\$/\2/p" "$log" |
 		awk '{ s += $1 } END { print s + 0 }')
-	[ "$ok" -gt 0 ] || return 1	# no test ran: the stage fails and counts as one
+	# no test ran: the stage fails and counts as one
+	[ "$ok" -gt 0 ] || [ "$fail" -gt 0 ] || return 1
 	passed=$((passed + ok))
 	failed=$((failed + fail + (rc != 0 && fail == 0)))
 	counted=1
