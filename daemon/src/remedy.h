@@ -16,6 +16,10 @@
 #define REMEDY_OTHER_CHIP \
 	"the sensor was replaced, or the record is another board's: run factory-test on this unit, or name its own record with --record"
 
+/* The daemon may not create its socket */
+#define REMEDY_SOCKET_CREATE \
+	"run the daemon as root (its unit does), or give --socket a path in a directory you may write"
+
 /* No record at the path */
 #define REMEDY_NO_RECORD \
 	"no record yet: run factory-test first (or name the record with --record)"

@@ -13,6 +13,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include "remedy.h"
 #include "service_socket.h"
 
 #define LISTEN_BACKLOG		16
@@ -167,8 +168,8 @@ static int bind_socket(int fd, const struct sockaddr_un *addr, mode_t mode,
 	if (ret) {
 		ret = errno;
 		return fail(err, errlen, ret, "cannot listen on %s: %s%s",
-			    addr->sun_path, strerror(ret), ret == EACCES ?
-			    ": run the daemon as root (its unit does), or give --socket a path in a directory you may write" : "");
+			    addr->sun_path, strerror(ret),
+			    ret == EACCES ? ": " REMEDY_SOCKET_CREATE : "");
 	}
 
 	return 0;

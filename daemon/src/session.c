@@ -60,7 +60,10 @@ int session_trust_setup(const char *state_group, char *err, size_t errlen)
 	return storage_trust_init(&trust, state_group, err, errlen);
 }
 
-/* "as9888-calibd: @err", and what to do about @errnum on the record's files if there is a remedy */
+/*
+ * "as9888-calibd: @err", followed by what to do about @errnum met on the
+ * record's files, if there is a remedy for it
+ */
 static void print_with_remedy(const char *err, int errnum)
 {
 	const char *remedy = remedy_record(errnum);
