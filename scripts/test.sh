@@ -9,9 +9,11 @@
 # Kernel: the two kernel trees from Debian's packages (6.1 LTS and the
 # newest, 7.2), the driver built against both with W=1, sparse and
 # checkpatch --strict, the devicetree binding checked with dt-schema, the
-# KUnit suite on both under UML, the DKMS build on Debian 12's headers, and
-# the VM bench: debug kernels of both versions in QEMU with the driver bound
-# to the simulated chip of the test adapter, driven by real clients.
+# KUnit suite on both under UML, the DKMS build on Debian 12's headers, the
+# boot test (a debootstrap Debian 12 with Debian's own kernel, the driver
+# from DKMS and systemd as PID 1, booted twice in QEMU), and the VM bench:
+# debug kernels of both versions in QEMU with the driver bound to the
+# simulated chip of the test adapter, driven by real clients.
 #
 # Userspace: the Meson suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
@@ -89,20 +91,33 @@ kunit_suite() {
 	return $rc
 }
 
-# The VM bench's test counts (per kernel) go into the summary
-vm_bench() {
-	local log=$build/vm.log rc ok fail
-	"$top/scripts/vm-run.sh" all 2>&1 | tee "$log"
+# counted_run LOG PREFIX CMD...: run CMD, its output also into LOG, and
+# count its "PREFIX N passed, M failed" lines (summed) into the summary
+counted_run() {
+	local log=$1 prefix=$2 rc ok fail
+	shift 2
+	"$@" 2>&1 | tee "$log"
 	rc=${PIPESTATUS[0]}
-	ok=$(sed -n 's/^[0-9.]*: \([0-9]*\) passed, \([0-9]*\) failed.*$/\1/p' "$log" |
+	ok=$(sed -n "s/^$prefix\([0-9]*\) passed, \([0-9]*\) failed.*\$/\1/p" "$log" |
 		awk '{ s += $1 } END { print s + 0 }')
-	fail=$(sed -n 's/^[0-9.]*: \([0-9]*\) passed, \([0-9]*\) failed.*$/\2/p' "$log" |
+	fail=$(sed -n "s/^$prefix\([0-9]*\) passed, \([0-9]*\) failed.*\$/\2/p" "$log" |
 		awk '{ s += $1 } END { print s + 0 }')
-	[ "$ok" -gt 0 ] || return 1
+	# no test ran: the stage fails and counts as one
+	[ "$ok" -gt 0 ] || [ "$fail" -gt 0 ] || return 1
 	passed=$((passed + ok))
 	failed=$((failed + fail + (rc != 0 && fail == 0)))
 	counted=1
 	return $rc
+}
+
+# The VM bench's test counts (per kernel) go into the summary
+vm_bench() {
+	counted_run "$build/vm.log" '[0-9.]*: ' "$top/scripts/vm-run.sh" all
+}
+
+# and the Debian boot test's checks
+boot_test() {
+	counted_run "$build/boot-debian.log" 'boot-debian: ' "$top/scripts/boot-debian.sh"
 }
 
 benchmark() {
@@ -129,6 +144,7 @@ if [ "$what" = all ]; then
 	stage "devicetree binding (dt-schema)" "$top/scripts/dt-check.sh"
 	stage "KUnit on 6.1 and 7.2 (UML)" kunit_suite
 	stage "DKMS build against Debian 12's headers" "$top/scripts/dkms-check.sh"
+	stage "boot test: Debian 12 with Debian's kernel, DKMS and systemd in QEMU" boot_test
 	stage "VM bench: driver, adapter and daemon in QEMU on 6.1 and 7.2" vm_bench
 fi
 

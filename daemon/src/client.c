@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "remedy.h"
 #include "request.h"
 
 /*
@@ -52,8 +53,12 @@ static int connect_daemon(const char *path)
 	strcpy(addr.sun_path, path);
 	fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
 	if (fd < 0 || connect(fd, (struct sockaddr *)&addr, sizeof(addr))) {
-		fprintf(stderr, "as9888-calibd: cannot reach the daemon at %s: %s\n",
-			path, strerror(errno));
+		int errnum = errno;
+		char what[REMEDY_LEN];
+
+		remedy_socket(errnum, path, what, sizeof(what));
+		fprintf(stderr, "as9888-calibd: cannot reach the daemon at %s: %s: %s\n",
+			path, strerror(errnum), what);
 		if (fd >= 0)
 			close(fd);
 		return -1;

@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "ftest_print.h"
 #include "iio.h"
+#include "remedy.h"
 #include "session.h"
 #include "show.h"
 
@@ -80,7 +81,7 @@ static int restore_iio(const struct cli_opts *o)
 	char dir[IIO_PATH_MAX];
 
 	if (iio_find_device(NULL, dir, sizeof(dir))) {
-		fprintf(stderr, "as9888-calibd: restore: no %s IIO device; nothing applied\n",
+		fprintf(stderr, "as9888-calibd: restore: no %s IIO device; nothing applied: " REMEDY_NO_DRIVER "\n",
 			IIO_DEVICE_NAME);
 		return EXIT_FAILURE;
 	}

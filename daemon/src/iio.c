@@ -11,6 +11,7 @@
 #include "iio.h"
 #include "iio_value.h"
 #include "record.h"
+#include "remedy.h"
 
 const char *const iio_calibbias_attr[AS9888_AXES] = {
 	"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
@@ -182,7 +183,7 @@ int iio_apply_checked(const char *dir, const struct calib_record *rec,
 		return ret;
 	}
 	if (memcmp(eeprom, rec->eeprom, AS9888_EEPROM_LEN)) {
-		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, %s is chip %016llx; nothing applied\n",
+		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, %s is chip %016llx; nothing applied: " REMEDY_OTHER_CHIP "\n",
 			what, (unsigned long long)record_fingerprint(rec->eeprom),
 			dir, (unsigned long long)record_fingerprint(eeprom));
 		return -ENODEV;

@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <grp.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include "remedy.h"
 #include "service_socket.h"
 
 #define LISTEN_BACKLOG		16
@@ -72,6 +74,74 @@ static int fail(char *err, size_t errlen, int errnum, const char *fmt, ...)
 	return -errnum;
 }
 
+/*
+ * Is @fd a listening Unix stream socket? 0, or -errno saying what it is
+ * instead, after @what (where the descriptor came from)
+ */
+static int check_listening(int fd, const char *what, char *err, size_t errlen)
+{
+	int domain = 0, type = 0, listening = 0;
+	socklen_t len = sizeof(int);
+	struct stat st;
+
+	if (fstat(fd, &st))
+		return fail(err, errlen, EBADF, "%s: descriptor %d is not open (%s)",
+			    what, fd, strerror(errno));
+	if (!S_ISSOCK(st.st_mode))
+		return fail(err, errlen, ENOTSOCK, "%s: descriptor %d is not a socket",
+			    what, fd);
+	if (getsockopt(fd, SOL_SOCKET, SO_DOMAIN, &domain, &len) || domain != AF_UNIX)
+		return fail(err, errlen, EAFNOSUPPORT,
+			    "%s: descriptor %d is not a Unix socket", what, fd);
+	len = sizeof(int);
+	if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &len) || type != SOCK_STREAM)
+		return fail(err, errlen, EPROTOTYPE,
+			    "%s: descriptor %d is not a stream socket (the .rc's socket line must say stream)",
+			    what, fd);
+	len = sizeof(int);
+	if (getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &len) || !listening)
+		return fail(err, errlen, EINVAL,
+			    "%s: descriptor %d is not listening", what, fd);
+
+	return 0;
+}
+
+/*
+ * The socket Android init passed (the .rc's "socket as9888_calibd stream
+ * ..." line: init puts its descriptor number in ANDROID_SOCKET_as9888_calibd,
+ * which libcutils' android_get_control_socket() reads). 0 with the
+ * descriptor in *@fd, or with -1 when the variable is not set; -errno with
+ * the reason in @err when it is set to anything but a listening Unix
+ * stream socket.
+ */
+static int android_socket(int *fd, char *err, size_t errlen)
+{
+	const char *v = getenv(ANDROID_SOCKET_ENV);
+	char what[64];
+	char *end;
+	long n;
+	int ret;
+
+	*fd = -1;
+	if (!v)
+		return 0;
+	errno = 0;
+	n = strtol(v, &end, 10);
+	if (end == v || *end || errno || n < 0 || n > INT_MAX)
+		return fail(err, errlen, EINVAL,
+			    "%s=\"%.32s\" is not a descriptor number: start the daemon from init with \"socket %s stream 0660 root system\" in its .rc, or unset the variable",
+			    ANDROID_SOCKET_ENV, v, ANDROID_SOCKET_NAME);
+	snprintf(what, sizeof(what), "%s=%ld", ANDROID_SOCKET_ENV, n);
+	ret = check_listening((int)n, what, err, errlen);
+	if (ret)
+		return ret;
+	unsetenv(ANDROID_SOCKET_ENV);
+	fcntl((int)n, F_SETFD, FD_CLOEXEC);
+	*fd = (int)n;
+
+	return 0;
+}
+
 /* Bind @fd to @addr; a stale socket file there is replaced, a live one is not */
 static int bind_socket(int fd, const struct sockaddr_un *addr, mode_t mode,
 		       char *err, size_t errlen)
@@ -95,9 +165,12 @@ static int bind_socket(int fd, const struct sockaddr_un *addr, mode_t mode,
 		ret = bind(fd, (const struct sockaddr *)addr, sizeof(*addr));
 	}
 	umask(old);
-	if (ret)
-		return fail(err, errlen, errno, "cannot listen on %s: %s",
-			    addr->sun_path, strerror(errno));
+	if (ret) {
+		ret = errno;
+		return fail(err, errlen, ret, "cannot listen on %s: %s%s",
+			    addr->sun_path, strerror(ret),
+			    ret == EACCES ? ": " REMEDY_SOCKET_CREATE : "");
+	}
 
 	return 0;
 }
@@ -111,10 +184,15 @@ int service_socket_open(const struct cli_opts *o, struct service_socket *s,
 
 	memset(s, 0, sizeof(*s));
 	s->fd = activated_socket();
+	if (s->fd < 0) {
+		ret = android_socket(&s->fd, err, errlen);
+		if (ret)
+			return ret;
+	}
 	s->activated = s->fd >= 0;
 	if (s->activated)	/* the loop never waits in accept() */
 		return fcntl(s->fd, F_SETFL, fcntl(s->fd, F_GETFL) | O_NONBLOCK) ?
-		       fail(err, errlen, errno, "socket from systemd: %s",
+		       fail(err, errlen, errno, "socket from systemd or init: %s",
 			    strerror(errno)) : 0;
 
 	if (strlen(o->socket_path) >= sizeof(addr.sun_path))

@@ -9,15 +9,21 @@
 
 #include "cli.h"
 
+/* The socket Android init passes: "socket as9888_calibd stream ..." in the .rc */
+#define ANDROID_SOCKET_NAME	"as9888_calibd"
+#define ANDROID_SOCKET_ENV	"ANDROID_SOCKET_" ANDROID_SOCKET_NAME
+
 struct service_socket {
 	int fd;
-	bool activated;		/* passed by systemd: not ours to remove */
+	bool activated;		/* passed by systemd or init: not ours to remove */
 	dev_t dev;		/* the socket file we created */
 	ino_t ino;
 };
 
 /*
- * The socket passed by systemd, or a new one at @o->socket_path with
+ * The socket passed by systemd (LISTEN_FDS), else the one passed by
+ * Android init (ANDROID_SOCKET_ENV; set to anything but a listening Unix
+ * stream socket, it is an error), else a new one at @o->socket_path with
  * @o's mode and group. A socket file another process still listens on is
  * never replaced: the call fails, saying so; a stale one (nobody
  * listening) is. 0, or -errno with the reason in @err.

@@ -18,6 +18,7 @@
 #include "iio.h"
 #include "lock_file.h"
 #include "record_pair.h"
+#include "remedy.h"
 #include "session.h"
 #include "storage_trust.h"
 
@@ -59,6 +60,18 @@ int session_trust_setup(const char *state_group, char *err, size_t errlen)
 	return storage_trust_init(&trust, state_group, err, errlen);
 }
 
+/*
+ * "as9888-calibd: @err", followed by what to do about @errnum met on the
+ * record's files, if there is a remedy for it
+ */
+static void print_with_remedy(const char *err, int errnum)
+{
+	const char *remedy = remedy_record(errnum);
+
+	fprintf(stderr, "as9888-calibd: %s%s%s\n", err, remedy ? ": " : "",
+		remedy ? remedy : "");
+}
+
 long session_read_record(const char *path, struct calib_record *rec, char *buf)
 {
 	char err[SESSION_ERR_LEN];
@@ -67,12 +80,18 @@ long session_read_record(const char *path, struct calib_record *rec, char *buf)
 
 	len = read_file_nofollow_stat(path, buf, RECORD_MAX_SIZE, &st, err,
 				      sizeof(err));
-	if (len >= 0 && (storage_trust_parent(&trust, path, err, sizeof(err)) ||
-			 storage_trust_file(&trust, path, &st, err, sizeof(err))))
-		len = -EPERM;
-	if (len < 0) {
-		fprintf(stderr, "as9888-calibd: %s\n", err);
+	if (len == -ENOENT) {
+		fprintf(stderr, "as9888-calibd: %s: %s\n", err, REMEDY_NO_RECORD);
 		return len;
+	}
+	if (len < 0) {
+		print_with_remedy(err, (int)-len);
+		return len;
+	}
+	if (storage_trust_parent(&trust, path, err, sizeof(err)) ||
+	    storage_trust_file(&trust, path, &st, err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: %s\n", err);
+		return -EPERM;
 	}
 	if (record_parse(buf, (size_t)len, rec, err, sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: %s: not a valid record: %s\n", path,
@@ -205,7 +224,7 @@ int session_lock(const char *path, unsigned int timeout_s)
 		fd = ret;
 	}
 	if (fd < 0) {
-		fprintf(stderr, "as9888-calibd: %s\n", err);
+		print_with_remedy(err, -fd);
 		return fd;
 	}
 	ret = lock_file_try(fd);
@@ -254,7 +273,7 @@ int session_apply_record(const struct cli_opts *o, const struct calib_record *re
 
 	j = report_first_failure(&res.report);
 	if (ret == -ENODEV && res.have_eeprom)
-		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, this chip is %016llx; nothing applied\n",
+		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, this chip is %016llx; nothing applied: " REMEDY_OTHER_CHIP "\n",
 			o->record_path,
 			(unsigned long long)record_fingerprint(rec->eeprom),
 			(unsigned long long)record_fingerprint(res.ee.raw));
@@ -270,7 +289,7 @@ int session_apply_record(const struct cli_opts *o, const struct calib_record *re
 static int find_iio_device(const char *what, char *dir, size_t size)
 {
 	if (iio_find_device(NULL, dir, size)) {
-		fprintf(stderr, "as9888-calibd: %s: no %s IIO device (is the driver bound?)\n",
+		fprintf(stderr, "as9888-calibd: %s: no %s IIO device: " REMEDY_NO_DRIVER "\n",
 			what, IIO_DEVICE_NAME);
 		return -ENODEV;
 	}

@@ -61,6 +61,7 @@ mkdir -p "$work/sys"
 AS9888_SYSFS=$work/sys run factory-test --record "$work/none/cal"
 check "factory-test without --backend, no driver, no bus: exit 1, says what to install, no record" \
 	eval '[ $rc -eq 1 ] && says "no AS9888 found" err && says "install the driver" err && \
+	      says "the driver is not bound: load as9888_i2c or as9888_spi" err && \
 	      says "modprobe i2c-dev" err && says "backend sim" err && [ ! -e "$work/none/cal" ] && \
 	      ! says "pass" out'
 AS9888_SYSFS=$work/sys run restore --record "$rec"
@@ -140,5 +141,55 @@ check "a FIFO as --unit: refused at once, not waited on" \
 run show --record "$rec" --samples 10
 check "an option a command does not take is named, not its value" \
 	eval '[ $rc -eq 2 ] && says "show does not take --samples" err'
+
+
+# Errors a new integrator meets say what failed, why and what to do
+run show --record "$work/none/cal"
+check "no record yet: exit 1, says to run the factory test first" \
+	eval '[ $rc -eq 1 ] && says "cannot open $work/none/cal: No such file or directory: no record yet: run factory-test first" err'
+AS9888_SYSFS=$work/sys run factory-test --backend iio --record "$work/none/cal"
+check "--backend iio and no driver bound: exit 1, says to load it or use the raw backend" \
+	eval '[ $rc -eq 1 ] && says "no as9888 IIO device: the driver is not bound: load as9888_i2c (or as9888_spi)" err && \
+	      says "or use --backend raw" err && [ ! -e "$work/none/cal" ]'
+# a user who may not: nobody when run as root, else this user against
+# modes that shut out even the owner
+if [ "$(id -u)" -eq 0 ] && id nobody >/dev/null 2>&1; then
+	as_user() { setpriv --reuid nobody --regid "$(id -g nobody)" --clear-groups "$@"; }
+else
+	as_user() { "$@"; }
+fi
+chmod 0711 "$work"
+mkdir -m 0555 "$work/rootdir"
+as_user "$calibd" factory-test $vt --record "$work/rootdir/cal" >"$work/out" 2>"$work/err"
+rc=$?
+check "record directory not writable: exit 1, permission denied: run as root" \
+	eval '[ $rc -eq 1 ] && says "$work/rootdir/cal.lock: Permission denied: run as root" err && [ ! -e "$work/rootdir/cal" ]'
+as_user "$calibd" daemon --backend sim --socket "$work/rootdir/sock" --record "$work/rootdir/cal" >"$work/out" 2>"$work/err"
+rc=$?
+check "daemon, socket directory not writable: exit 1, permission denied: run the daemon as root" \
+	eval '[ $rc -eq 1 ] && says "cannot listen on $work/rootdir/sock: Permission denied: run the daemon as root" err'
+python3 -c 'import socket, sys, time
+s = socket.socket(socket.AF_UNIX)
+s.bind(sys.argv[1])
+s.listen()
+time.sleep(120)' "$work/sock" &
+listener=$!
+for _ in $(seq 100); do [ -S "$work/sock" ] && break; sleep 0.1; done
+if [ "$(id -u)" -eq 0 ]; then
+	chgrp users "$work/sock" && chmod 0660 "$work/sock"
+	group_remedy="run as root, or ask to be added to group users (the socket's SocketGroup=)"
+else
+	chmod 0 "$work/sock"
+	group_remedy="run as root, or ask for SocketGroup"
+fi
+as_user "$calibd" request status --socket "$work/sock" >"$work/out" 2>"$work/err"
+rc=$?
+check "socket permission denied: exit 1, run as root or ask for SocketGroup (naming the group)" \
+	eval '[ $rc -eq 1 ] && says "cannot reach the daemon at $work/sock: Permission denied: $group_remedy" err'
+kill "$listener"
+wait "$listener" 2>/dev/null
+run request status --socket "$work/no-daemon.sock"
+check "no daemon: exit 1, says to start it" \
+	eval '[ $rc -eq 1 ] && says "the daemon is not running: systemctl enable --now as9888-calibd.socket" err'
 
 tap_end

@@ -108,6 +108,41 @@ bp = open(src + "/contrib/android/Android.bp").read()
 listed = set(re.findall(r'"([\w/.-]+\.c)"', bp))
 assert built == listed, sorted(built ^ listed)
 PY
+check "Android init .rc (init's grammar), SELinux file_contexts and the daemon: one socket name" \
+	python3 - "$src" <<'PY'
+import re, sys
+src = sys.argv[1]
+name = re.search(r'#define ANDROID_SOCKET_NAME\s+"(\w+)"',
+                 open(src + "/daemon/src/service_socket.h").read()).group(1)
+# init's sections ("on", "service", "import" at the start of a line) and
+# the service options used here, indented below a service
+options = {"class", "socket", "user", "group", "capabilities", "task_profiles",
+           "oneshot", "disabled", "seclabel", "writepid", "file", "critical",
+           "ioprio", "priority", "setenv", "onrestart", "rlimit"}
+services, section = {}, None
+for line in open(src + "/contrib/android/as9888-calibd.rc").read().splitlines():
+    if not line.strip() or line.lstrip().startswith("#"):
+        continue
+    words = line.split()
+    if not line[0].isspace():
+        assert words[0] in ("on", "service", "import"), line
+        section = words[0]
+        if section == "service":
+            assert len(words) >= 3 and words[2].startswith("/"), line
+            svc = services.setdefault(words[1], {"args": words[2:], "opts": []})
+        continue
+    assert section, line
+    if section == "service":
+        assert words[0] in options, line
+        svc["opts"].append(words)
+(daemon,) = [s for s in services.values() if "daemon" in s["args"]]
+sockets = [o for o in daemon["opts"] if o[0] == "socket"]
+assert len(sockets) == 1 and sockets[0][1:3] == [name, "stream"], sockets
+args = daemon["args"]
+assert args[args.index("--socket") + 1] == "/dev/socket/" + name, args
+fc = open(src + "/contrib/android/sepolicy/file_contexts").read()
+assert re.search(r"^/dev/socket/%s\s" % name, fc, re.M), "file_contexts"
+PY
 
 # the full build the suite runs in (simulator, libgpiod, tests): same list
 # under its own prefix
