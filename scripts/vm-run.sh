@@ -47,7 +47,8 @@ mkdir -p "$VM_DIR" "$LOG_DIR"
 T_START=$(now)
 
 ensure_pkgs busybox-static qemu-system-x86 cpio gzip meson ninja-build \
-	pkg-config libgpiod-dev libcmocka-dev gcc gpiod file libiio-utils
+	pkg-config libgpiod-dev libcmocka-dev gcc gpiod file libiio-utils \
+	dbus-daemon dbus-system-bus-common libglib2.0-0
 
 # as9888-calibd, statically linked (glibc + libgpiod 1.6 static libs)
 build_daemon() {
@@ -75,6 +76,40 @@ build_tools_iio() {
 		>"$LOG_DIR/vm-tools-iio.log" 2>&1 ||
 		die "tools/iio build failed, see $LOG_DIR/vm-tools-iio.log"
 	TOOLS_IIO="$o"
+}
+
+# The real consumer (issue 12): Debian 12's iio-sensor-proxy with its udev
+# rule, systemd-udevd and the system bus. The packages that are not the
+# host's own (iio-sensor-proxy, libgudev, udev) are taken with apt-get
+# download into $VM_DIR/debs (kept: a second run downloads nothing) and
+# unpacked into $VM_DIR/proxy-root; dbus-daemon, GLib and the libraries
+# they share are the host's (ensure_pkgs above). Sets PROXY_ROOT and
+# PROXY_VERSIONS (package=version, one a line).
+PROXY_DEBS="iio-sensor-proxy libgudev-1.0-0 udev"
+stage_sensor_proxy() {
+	local debs="$VM_DIR/debs" r="$VM_DIR/proxy-root" p f t
+	t=$(now)
+	mkdir -p "$debs"
+	for p in $PROXY_DEBS; do
+		compgen -G "$debs/${p}_*.deb" >/dev/null && continue
+		(cd "$debs" && apt-get download -q "$p") >>"$LOG_DIR/vm-debs.log" 2>&1 ||
+			die "apt-get download $p failed, see $LOG_DIR/vm-debs.log"
+	done
+	rm -rf "$r"
+	mkdir -p "$r"
+	PROXY_VERSIONS=""
+	for p in $PROXY_DEBS; do
+		f=$(ls "$debs/${p}"_*.deb | tail -n 1)
+		dpkg-deb -x "$f" "$r" || die "cannot unpack $f"
+		PROXY_VERSIONS="$PROXY_VERSIONS$p=$(dpkg-deb -f "$f" Version)
+"
+	done
+	for p in dbus-daemon libglib2.0-0; do
+		PROXY_VERSIONS="$PROXY_VERSIONS$p=$(dpkg-query -W -f='${Version}' "$p")
+"
+	done
+	PROXY_ROOT="$r"
+	log "iio-sensor-proxy, udev and the system bus staged in $(since "$t")"
 }
 
 # The guest's clock. Under TCG the guest's TSC is the host's (QEMU reads
@@ -123,14 +158,43 @@ EOF_C
 	fi
 }
 
-# copy_with_libs ROOT BINARY: a dynamic program and the libraries it needs
+# copy_with_libs ROOT BINARY [DEST [STAGE]]: a dynamic program (into
+# DEST, default /usr/bin) and the libraries it needs; STAGE is an unpacked
+# package tree searched for libraries before the host's
 copy_with_libs() {
-	local root="$1" bin="$2" lib
-	cp "$bin" "$root/usr/bin/"
-	for lib in $(ldd "$bin" | grep -o '/[^ ]*'); do
-		mkdir -p "$root$(dirname "$lib")"
-		cp -L "$lib" "$root$lib"
+	local root="$1" bin="$2" dest="${3:-/usr/bin}" stage="${4:-}" lib path=""
+	mkdir -p "$root$dest"
+	cp "$bin" "$root$dest/"
+	[ -z "$stage" ] || path="$stage/usr/lib/x86_64-linux-gnu:$stage/lib/x86_64-linux-gnu"
+	for lib in $(LD_LIBRARY_PATH="$path" ldd "$bin" | grep -o '/[^ ]*'); do
+		local to="${lib#"$stage"}"
+		mkdir -p "$root$(dirname "$to")"
+		cp -L "$lib" "$root$to"
 	done
+}
+
+# The staged iio-sensor-proxy, udevd and dbus-daemon in the initramfs
+install_sensor_proxy() {
+	local root="$1" r="$PROXY_ROOT"
+	copy_with_libs "$root" "$r/usr/sbin/iio-sensor-proxy" /usr/sbin "$r"
+	copy_with_libs "$root" "$r/usr/bin/monitor-sensor" /usr/bin "$r"
+	copy_with_libs "$root" "$r/bin/udevadm" /usr/bin "$r"
+	mkdir -p "$root/lib/systemd" "$root/lib/udev/rules.d" "$root/etc/udev" \
+		"$root/etc/dbus-1/system.d" "$root/usr/share/dbus-1" "$root/run"
+	ln -sf /usr/bin/udevadm "$root/lib/systemd/systemd-udevd"
+	cp "$r/lib/udev/rules.d/80-iio-sensor-proxy.rules" "$root/lib/udev/rules.d/"
+	cp "$r/etc/udev/udev.conf" "$root/etc/udev/"
+	copy_with_libs "$root" /usr/bin/dbus-daemon /usr/bin
+	cp /usr/share/dbus-1/system.conf "$root/usr/share/dbus-1/"
+	cp "$r/etc/dbus-1/system.d/net.hadess.SensorProxy.conf" "$root/etc/dbus-1/system.d/"
+	printf 'root:x:0:0:root:/root:/bin/sh\nmessagebus:x:100:101::/nonexistent:/bin/false\n' \
+		>"$root/etc/passwd"
+	printf 'root:x:0:\nmessagebus:x:101:\n' >"$root/etc/group"
+	echo 4f0b1a3c9e7d4b2a8c6e5f1d2a3b4c5d >"$root/etc/machine-id"
+	# GLib's default system bus address is under /var/run, as on Debian
+	mkdir -p "$root/var"
+	ln -sfn /run "$root/var/run"
+	printf '%s' "$PROXY_VERSIONS" >"$root/tests/clients.txt"
 }
 
 pack_initramfs() {
@@ -148,6 +212,7 @@ pack_initramfs() {
 	for a in gpiodetect gpioinfo gpioget iio_info iio_attr iio_readdev; do
 		copy_with_libs "$root" "/usr/bin/$a"
 	done
+	install_sensor_proxy "$root"
 	cp "$VM_DIR/mod-$k/ko/"*.ko "$root/lib/modules/as9888/"
 	cp "$GUEST/init" "$root/init"
 	cp "$GUEST/lib.sh" "$GUEST/run-all.sh" "$root/tests/"
@@ -179,6 +244,10 @@ run_one() {
 		-append "console=ttyS0 loglevel=5 oops=panic panic_on_warn=1 panic=-1 kmemleak=on $GUEST_CLOCK" \
 		</dev/null >"$log" 2>&1 &
 	qpid=$!
+	# a bench stopped from outside (timeout, ^C) takes its guest with it
+	# shellcheck disable=SC2064 # the pid of this guest, now
+	trap "kill $qpid 2>/dev/null" EXIT
+	trap "kill $qpid 2>/dev/null; exit 143" TERM INT
 	# the stall watchdog: TAP lines (and diagnostics) must keep coming
 	while kill -0 "$qpid" 2>/dev/null; do
 		sleep 5
@@ -229,6 +298,7 @@ run_one() {
 
 build_daemon
 build_tools_iio
+stage_sensor_proxy
 guest_clock
 for k in "${WANT[@]}"; do
 	"$AS9888_REPO/scripts/vm-kernel.sh" "$k"
