@@ -246,8 +246,8 @@ run_one() {
 	qpid=$!
 	# a bench stopped from outside (timeout, ^C) takes its guest with it
 	# shellcheck disable=SC2064 # the pid of this guest, now
-	trap "kill $qpid 2>/dev/null" EXIT
-	trap "kill $qpid 2>/dev/null; exit 143" TERM INT
+	trap "kill $qpid 2>/dev/null || true" EXIT
+	trap "kill $qpid 2>/dev/null || true; exit 143" TERM INT
 	# the stall watchdog: TAP lines (and diagnostics) must keep coming
 	while kill -0 "$qpid" 2>/dev/null; do
 		sleep 5
@@ -266,6 +266,7 @@ run_one() {
 		fi
 	done
 	wait "$qpid" || rc=$?
+	trap - EXIT TERM INT
 	tr -d '\r' <"$log" >"$log.tmp" && mv "$log.tmp" "$log"
 	pass=$(grep -c '^ok ' "$log" || true)
 	fail=$(grep -c '^not ok ' "$log" || true)
