@@ -108,6 +108,7 @@ enum as9888_sensor_id {
  * @last_start:	when the last measurement was started
  * @trig_slot:	when the data-ready trigger's current sample was due; the
  *		next one is due a period later, so lateness does not add up
+ * @trig_gen:	counts the starts of the data-ready trigger
  * @trig_users:	sensors whose buffer runs on the data-ready trigger
  * @trig_resume: the data-ready trigger ran when the system suspended
  * @trig_unread: the data-ready trigger's sample in flight is not read yet
@@ -141,6 +142,7 @@ struct as9888_chip {
 	ktime_t pd_since;
 	ktime_t last_start;
 	ktime_t trig_slot;
+	unsigned int trig_gen;
 	unsigned long trig_users;
 	bool trig_resume;
 	bool trig_unread;

@@ -132,6 +132,7 @@ static int as9888_trig_start(struct as9888_chip *chip)
 	lockdep_assert_held(&chip->lock);
 
 	WRITE_ONCE(chip->trig_running, true);
+	chip->trig_gen++;
 	ret = as9888_trig_measure(chip);
 	if (ret)
 		WRITE_ONCE(chip->trig_running, false);
@@ -190,11 +191,13 @@ int as9888_trig_sample(struct as9888_chip *chip,
  * sample. Wait for the rest of the sampling period (the wait ends early
  * when the trigger stops), then start the next measurement, whose INT1
  * edge fires the trigger again. It runs in the last handler's thread or a
- * work item, never in interrupt context.
+ * work item, never in interrupt context. A trigger stopped and started
+ * again meanwhile (a new generation) has its own first sample under way.
  */
 static void as9888_trig_reenable(struct iio_trigger *trig)
 {
 	struct as9888_chip *chip = iio_trigger_get_drvdata(trig);
+	unsigned int gen;
 	ktime_t next, now;
 	u64 period;
 	s64 wait_ns;
@@ -203,6 +206,7 @@ static void as9888_trig_reenable(struct iio_trigger *trig)
 	scoped_guard(mutex, &chip->lock) {
 		if (!chip->trig_running)
 			return;
+		gen = chip->trig_gen;
 		as9888_trig_gap(chip);
 		period = as9888_trig_period_ns(chip);
 		next = ktime_add_ns(chip->trig_slot, period);
@@ -220,6 +224,8 @@ static void as9888_trig_reenable(struct iio_trigger *trig)
 				     ns_to_ktime(wait_ns));
 
 	guard(mutex)(&chip->lock);
+	if (chip->trig_gen != gen)
+		return;
 	for (i = 0; i < AS9888_START_RETRIES && chip->trig_running; i++) {
 		ret = as9888_trig_measure(chip);
 		if (!ret)
