@@ -208,7 +208,7 @@ static int find_trigger(struct iio_test_dev *d)
 	DIR *dir;
 	int ret = -ENOENT;
 
-	snprintf(want, sizeof(want), "%s-dev%s", IIO_DEVICE_NAME,
+	snprintf(want, sizeof(want), "%s-dev%s", IIO_CHIP_NAME,
 		 base + 1 + strlen(IIO_DEVICE_PREFIX));
 	snprintf(bus, sizeof(bus), "%s/bus/iio/devices", iio_sysfs_root());
 	dir = opendir(bus);

@@ -41,18 +41,19 @@ static const char *const initial[][2] = {
 	{ SCAN "/in_accel_y_en", "0" },
 	{ SCAN "/in_accel_z_en", "0" },
 	{ SCAN "/in_temp_en", "0" },
-	{ SCAN "/in_magn_x_en", "1" },
 	{ SCAN "/in_timestamp_en", "1" },
 };
 
-/* The driver's buffer: compensated accelerometer, TMPS, magnetometer */
+/*
+ * The accelerometer device's buffer: compensated accelerometer, TMPS and
+ * the timestamp (the magnetometer's channels are on its own device)
+ */
 static const char *const scan_types[][3] = {
 	{ "in_accel_x", "0", "le:s16/16>>0" },
 	{ "in_accel_y", "1", "le:s16/16>>0" },
 	{ "in_accel_z", "2", "le:s16/16>>0" },
-	{ "in_temp", "6", "le:u8/16>>0" },
-	{ "in_magn_x", "3", "le:s13/16>>0" },
-	{ "in_timestamp", "7", "le:s64/64>>0" },
+	{ "in_temp", "3", "le:u8/16>>0" },
+	{ "in_timestamp", "4", "le:s64/64>>0" },
 };
 
 static void put_initial(const struct fake_sysfs *f)
