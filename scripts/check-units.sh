@@ -11,8 +11,10 @@
 #    binary;
 #  - systemd-analyze security --offline=true: the exposure printed and
 #    compared with the bounds below;
-#  - the udev rule parsed by udevadm verify when this udevadm has it, else
-#    checked for the SYSTEMD_WANTS line the restore depends on.
+#  - the udev rule parsed by udevadm verify when this udevadm has it, and
+#    checked for the SYSTEMD_WANTS line the restore depends on and for its
+#    match on the accelerometer device's name alone (as9888-accel: the
+#    chip's magnetometer device must not start a second restore).
 #
 # Bounds: issue 13 asks for at most 2.0 (restore) and 3.0 (daemon); on
 # Debian 12's systemd 252 the units score 0.7 and 1.1 (from 9.5 and 8.9).
@@ -116,5 +118,8 @@ if udevadm verify --help >/dev/null 2>&1; then
 fi
 grep -q 'ENV{SYSTEMD_WANTS}+="as9888-calibd-restore@.service"' "$rule" &&
 	grep -q 'TAG+="systemd"' "$rule" || fail "$(basename "$rule"): no SYSTEMD_WANTS"
+# one restore per chip: the accelerometer device only, not the magnetometer's
+grep -q '^ATTR{name}!="as9888-accel", GOTO="as9888_calibd_end"$' "$rule" ||
+	fail "$(basename "$rule"): does not match the accelerometer device (as9888-accel) alone"
 [ $status -ne 0 ] || echo "check-units: all ok"
 exit $status

@@ -61,5 +61,5 @@ void cli_pick_backend(struct cli_opts *o)
 	o->backend = CLI_BACKEND_NONE;
 	snprintf(o->backend_why, sizeof(o->backend_why),
 		 "no AS9888 found, nothing done: no %s IIO device is bound (the driver is not bound: load as9888_i2c or as9888_spi with modprobe; if modprobe does not find them, install the driver: dkms install, see README \"Kernel side\"), and no chip answers on the raw bus (%s; load i2c-dev with \"modprobe i2c-dev\", name the bus with --i2c-dev and --i2c-address, and for the pin checks --gpiochip with the line options, libgpiod installed). The simulator runs only when named: --backend sim",
-		 IIO_DEVICE_NAME, raw_why);
+		 IIO_ACCEL_NAME, raw_why);
 }

@@ -82,7 +82,7 @@ static int restore_iio(const struct cli_opts *o)
 
 	if (iio_find_device(NULL, dir, sizeof(dir))) {
 		fprintf(stderr, "as9888-calibd: restore: no %s IIO device; nothing applied: " REMEDY_NO_DRIVER "\n",
-			IIO_DEVICE_NAME);
+			IIO_ACCEL_NAME);
 		return EXIT_FAILURE;
 	}
 	if (iio_restore(o->record_path, dir, false))

@@ -2,19 +2,25 @@
 /*
  * The factory test's device when the AS9888 IIO driver owns the chip: its
  * interfaces (Documentation/ABI/testing/sysfs-bus-iio-as9888) stand in for
- * register access.
+ * register access. The driver registers two IIO devices per chip: the test
+ * runs on the accelerometer's (as9888-accel, iio:deviceN) and reaches the
+ * magnetometer's (as9888-magn, iio:deviceM, its sibling below the bus
+ * device) for step 2 only.
  *
  *   step 1  the driver identified the chip when it bound (WIA) and loaded
  *           the trims; the EEPROM comes from its NVMEM provider and the DAC
  *           values go through in_accel_*_calibbias, read back (D10)
- *   step 2  the driver's selftest attribute runs the test and reads back
- *           its verdict (pass/fail); the adjusted readings come from
- *           debugfs iio/iio:deviceN/selftest_readings and are judged again
- *           here against the windows of steps 2-17..2-22. Without them
- *           (debugfs not mounted or not readable) those judgments are
- *           skipped, saying so, and the driver's verdict decides
- *   step 3  samples from the buffer on the driver's data-ready trigger
- *           (INT1): accelerometer X, Y, Z and the temperature code; the
+ *   step 2  the magnetometer device's selftest attribute runs the test
+ *           and reads back its verdict (pass/fail); the adjusted readings
+ *           come from debugfs iio/iio:deviceM/selftest_readings and are
+ *           judged again here against the windows of steps 2-17..2-22.
+ *           Without them (debugfs not mounted or not readable) those
+ *           judgments are skipped, saying so, and the driver's verdict
+ *           decides. Without the magnetometer device the step fails
+ *           (2-4.magn), naming the directory it is missing from
+ *   step 3  samples from the accelerometer device's buffer on the
+ *           driver's data-ready trigger (INT1, "as9888-dev<N>"):
+ *           accelerometer X, Y, Z and the temperature code; the
  *           driver checks ST1 and EMPT of every sample and delivers none
  *           that fails, and the DAC goes through calibbias. The filter is
  *           in_accel_oversampling_ratio: 1 off, 4 on (ALPF)
@@ -90,7 +96,8 @@ struct saved_attr {
 
 /**
  * struct iio_test_dev - the driver-backed test device
- * @dir:	the IIO device's sysfs directory
+ * @dir:	the accelerometer IIO device's sysfs directory
+ * @magn:	the magnetometer IIO device's, once step 2 found it
  * @scan_dir:	its scan_elements directory, relative to @dir
  * @chardev:	its character device
  * @trigger:	the name of its data-ready trigger
@@ -103,6 +110,7 @@ struct saved_attr {
  */
 struct iio_test_dev {
 	char dir[IIO_PATH_MAX];
+	char magn[IIO_PATH_MAX];
 	const char *scan_dir;
 	char chardev[IIO_PATH_MAX];
 	char trigger[IIO_NAME_MAX];
@@ -199,7 +207,10 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 	return 0;
 }
 
-/* The driver's data-ready trigger, named <name>-dev<N> */
+/*
+ * The driver's data-ready trigger, named as9888-dev<N> after the
+ * accelerometer device iio:device<N>
+ */
 static int find_trigger(struct iio_test_dev *d)
 {
 	const char *base = strrchr(d->dir, '/');
@@ -208,7 +219,7 @@ static int find_trigger(struct iio_test_dev *d)
 	DIR *dir;
 	int ret = -ENOENT;
 
-	snprintf(want, sizeof(want), "%s-dev%s", IIO_DEVICE_NAME,
+	snprintf(want, sizeof(want), "%s-dev%s", IIO_CHIP_NAME,
 		 base + 1 + strlen(IIO_DEVICE_PREFIX));
 	snprintf(bus, sizeof(bus), "%s/bus/iio/devices", iio_sysfs_root());
 	dir = opendir(bus);
@@ -349,30 +360,43 @@ static void judge_selftest_verdict(struct ftest_ctx *x, bool pass,
 		    pass ? "pass" : "fail", unavailable);
 }
 
-static int iio_step2(struct ftest_ctx *x)
+/*
+ * The magnetometer device of the chip into d->magn: 2-4.magn judges it
+ * there; without it the step cannot run (-ENODEV)
+ */
+static int find_magn(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
-	enum iio_selftest_verdict verdict = IIO_SELFTEST_NONE;
+	char parent[IIO_PATH_MAX], found[IIO_ERR_LEN];
+	int ret;
+
+	*parent = '\0';
+	ret = iio_find_magn(d->dir, d->magn, sizeof(d->magn), parent,
+			    sizeof(parent));
+	if (!ret)
+		snprintf(found, sizeof(found), "%s", d->magn);
+	else if (!*parent)
+		snprintf(found, sizeof(found), "cannot resolve %s to its bus device: %s",
+			 d->dir, strerror(-ret));
+	else
+		snprintf(found, sizeof(found),
+			 "none in %s: a driver without it, or it failed to register (see the kernel log)",
+			 parent);
+	ftest_judge(x, "2-4.magn", "magnetometer device", !ret,
+		    "the chip's " IIO_MAGN_NAME " IIO device", "%s", found);
+
+	return ret ? -ENODEV : 0;
+}
+
+/* Read the adjusted readings and judge them, or the verdict alone */
+static void judge_selftest(struct ftest_ctx *x, bool pass)
+{
+	struct iio_test_dev *d = x->dev;
 	int32_t adj[AS9888_AXES];
 	char val[IIO_ATTR_MAX], path[IIO_PATH_MAX], why[IIO_ERR_LEN];
 	int ret;
 
-	ftest_skip(x, "2-4.int2", "INT2 pin check (D11)", "the driver does not use INT2");
-	ret = iio_write_attr(d->dir, "selftest", "1");
-	if (!ftest_judge(x, "2-4.drdy", "measurement completes", !ret,
-			 "the driver's selftest runs both measurements", "%s",
-			 ret ? strerror(-ret) : "done"))
-		return 0;
-	ret = iio_read_attr(d->dir, "selftest", val, sizeof(val));
-	if (ret < 0)
-		return ftest_io_failed(x, "2-15", "selftest result", ret);
-	if (!ftest_judge(x, "2-15.verdict", "self-test verdict readable",
-			 !iio_parse_selftest_verdict(val, &verdict) &&
-			 verdict != IIO_SELFTEST_NONE, "pass|fail after a test",
-			 "\"%s\"", val))
-		return 0;
-
-	ret = iio_read_debugfs(d->dir, IIO_SELFTEST_READINGS, val, sizeof(val),
+	ret = iio_read_debugfs(d->magn, IIO_SELFTEST_READINGS, val, sizeof(val),
 			       path, sizeof(path));
 	if (ret < 0) {
 		snprintf(why, sizeof(why), "%s: %s", path, strerror(-ret));
@@ -382,14 +406,40 @@ static int iio_step2(struct ftest_ctx *x)
 		    !ftest_judge(x, "2-15.readings", "self-test readings readable", false,
 				 "X Y Z, LSB with three decimals", "%s: \"%s\"",
 				 path, val) && x->stop)
-			return 0;
+			return;
 		if (ret)
 			snprintf(why, sizeof(why), "%s reads \"%s\"", path, val);
 	}
 	if (ret)
-		judge_selftest_verdict(x, verdict == IIO_SELFTEST_PASS, why);
+		judge_selftest_verdict(x, pass, why);
 	else
-		judge_selftest_readings(x, adj, verdict == IIO_SELFTEST_PASS);
+		judge_selftest_readings(x, adj, pass);
+}
+
+static int iio_step2(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	enum iio_selftest_verdict verdict = IIO_SELFTEST_NONE;
+	char val[IIO_ATTR_MAX];
+	int ret;
+
+	ftest_skip(x, "2-4.int2", "INT2 pin check (D11)", "the driver does not use INT2");
+	if (find_magn(x))
+		return 0;
+	ret = iio_write_attr(d->magn, "selftest", "1");
+	if (!ftest_judge(x, "2-4.drdy", "measurement completes", !ret,
+			 "the driver's selftest runs both measurements",
+			 "%s/selftest: %s", d->magn, ret ? strerror(-ret) : "done"))
+		return 0;
+	ret = iio_read_attr(d->magn, "selftest", val, sizeof(val));
+	if (ret < 0)
+		return ftest_io_failed(x, "2-15", "selftest result", ret);
+	if (!ftest_judge(x, "2-15.verdict", "self-test verdict readable",
+			 !iio_parse_selftest_verdict(val, &verdict) &&
+			 verdict != IIO_SELFTEST_NONE, "pass|fail after a test",
+			 "\"%s\"", val))
+		return 0;
+	judge_selftest(x, verdict == IIO_SELFTEST_PASS);
 
 	return 0;
 }

@@ -3,6 +3,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -94,16 +95,22 @@ int iio_write_attr(const char *dir, const char *name, const char *value)
 	return n < 0 ? (int)n : (size_t)n == len ? 0 : -EIO;
 }
 
-static bool is_as9888(const char *dir)
+/* @dir's IIO device is named @want */
+static bool has_name(const char *dir, const char *want)
 {
 	char name[IIO_ATTR_MAX];
 
 	return iio_read_attr(dir, "name", name, sizeof(name)) > 0 &&
-	       !strcmp(name, IIO_DEVICE_NAME);
+	       !strcmp(name, want);
 }
 
-/* The first AS9888 iio:deviceN directly below @dir */
-static int scan(const char *dir, char *out, size_t size)
+static bool is_iio_device(const char *entry)
+{
+	return !strncmp(entry, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX));
+}
+
+/* The first iio:deviceN directly below @dir named @want */
+static int scan(const char *dir, const char *want, char *out, size_t size)
 {
 	struct dirent *de;
 	DIR *d = opendir(dir);
@@ -112,10 +119,10 @@ static int scan(const char *dir, char *out, size_t size)
 	if (!d)
 		return -ENOENT;
 	while ((de = readdir(d))) {
-		if (strncmp(de->d_name, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX)))
+		if (!is_iio_device(de->d_name))
 			continue;
 		snprintf(out, size, "%s/%s", dir, de->d_name);
-		if (is_as9888(out)) {
+		if (has_name(out, want)) {
 			ret = 0;
 			break;
 		}
@@ -132,20 +139,38 @@ int iio_find_device(const char *devpath, char *out, size_t size)
 
 	if (!devpath) {
 		snprintf(dir, sizeof(dir), "%s/bus/iio/devices", iio_sysfs_root());
-		return scan(dir, out, size);
+		return scan(dir, IIO_ACCEL_NAME, out, size);
 	}
 	if (strstr(devpath, "/.."))
 		return -ENOENT;
 	snprintf(dir, sizeof(dir), "%s%s", iio_sysfs_root(), devpath);
 	base = strrchr(dir, '/');
-	if (base && !strncmp(base + 1, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX))) {
-		if (!is_as9888(dir))
+	if (base && is_iio_device(base + 1)) {
+		if (!has_name(dir, IIO_ACCEL_NAME))
 			return -ENOENT;
 		snprintf(out, size, "%s", dir);
 		return 0;
 	}
 
-	return scan(dir, out, size);
+	return scan(dir, IIO_ACCEL_NAME, out, size);
+}
+
+int iio_find_magn(const char *accel_dir, char *out, size_t size,
+		  char *parent, size_t parent_size)
+{
+	char real[PATH_MAX];
+	char *base;
+
+	if (!realpath(accel_dir, real))
+		return -errno;
+	base = strrchr(real, '/');
+	if (!base || base == real)
+		return -ENOENT;
+	*base = '\0';
+	if (parent)
+		snprintf(parent, parent_size, "%s", real);
+
+	return scan(real, IIO_MAGN_NAME, out, size);
 }
 
 int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
@@ -155,10 +180,10 @@ int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 	ssize_t n;
 	int fd;
 
-	if (!base || strncmp(base + 1, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX)))
+	if (!base || !is_iio_device(base + 1))
 		return -EINVAL;
 	snprintf(path, sizeof(path), "%s/../%s-eeprom%s/nvmem", dir,
-		 IIO_DEVICE_NAME, base + 1 + strlen(IIO_DEVICE_PREFIX));
+		 IIO_CHIP_NAME, base + 1 + strlen(IIO_DEVICE_PREFIX));
 	fd = open(path, O_RDONLY | O_CLOEXEC);
 	if (fd < 0)
 		return -errno;

@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * The AS9888 IIO driver's interfaces as the daemon uses them: finding the
- * device in sysfs, its EEPROM through NVMEM, its debugfs files, the offset
- * DAC (in_accel_*_calibbias) and the calibration (in_accel_*_caliboffset,
- * in_accel_calibtemp), and applying a record through them
- * (Documentation/ABI/testing/sysfs-bus-iio-as9888).
+ * chip's two IIO devices in sysfs (the accelerometer's and, beside it, the
+ * magnetometer's), the EEPROM through NVMEM, their debugfs files, the
+ * offset DAC (in_accel_*_calibbias) and the calibration
+ * (in_accel_*_caliboffset, in_accel_calibtemp), and applying a record
+ * through them (Documentation/ABI/testing/sysfs-bus-iio-as9888).
  */
 #ifndef AS9888_IIO_H
 #define AS9888_IIO_H
@@ -20,7 +21,20 @@
 #define IIO_ATTR_MAX	128
 /* Longest message of the functions below that return one */
 #define IIO_ERR_LEN	(2 * IIO_PATH_MAX)
-#define IIO_DEVICE_NAME	"as9888"
+/*
+ * The driver registers one IIO device per sensor, both children of the
+ * chip's bus device: the accelerometer's (with the temperature, the
+ * calibration and the data-ready trigger), which the daemon calibrates,
+ * and the magnetometer's (with the self-test)
+ */
+#define IIO_ACCEL_NAME	"as9888-accel"
+#define IIO_MAGN_NAME	"as9888-magn"
+/*
+ * The chip's name in what is named per chip after the accelerometer
+ * device's number N: the trigger "as9888-dev<N>" and the NVMEM provider
+ * "as9888-eeprom<N>"
+ */
+#define IIO_CHIP_NAME	"as9888"
 #define IIO_DEVICE_PREFIX	"iio:device"
 #define IIO_TRIGGER_PREFIX	"trigger"
 
@@ -36,11 +50,24 @@ const char *iio_sysfs_root(void);
 const char *iio_debugfs_root(void);
 
 /*
- * The sysfs directory of an AS9888 IIO device: the one at or below
- * /sys@devpath, or with @devpath NULL the first one present. The sysfs
- * root is $AS9888_SYSFS (default /sys). Returns 0 or -ENOENT.
+ * The sysfs directory of an AS9888 accelerometer IIO device
+ * (IIO_ACCEL_NAME): the one at or below /sys@devpath, or with @devpath
+ * NULL the first one present. The sysfs root is $AS9888_SYSFS (default
+ * /sys). Returns 0 or -ENOENT.
  */
 int iio_find_device(const char *devpath, char *out, size_t size);
+
+/*
+ * The same chip's magnetometer IIO device (IIO_MAGN_NAME) for the
+ * accelerometer device at @accel_dir: the sibling iio:deviceM below the
+ * bus device that holds it (@accel_dir resolved, as the bus link
+ * /sys/bus/iio/devices/iio:deviceN leads there). Its sysfs directory
+ * goes into @out; @parent, when not NULL, receives the bus device's
+ * directory, for messages. Returns 0, -ENOENT when there is no such
+ * device, or -errno when @accel_dir cannot be resolved.
+ */
+int iio_find_magn(const char *accel_dir, char *out, size_t size,
+		  char *parent, size_t parent_size);
 
 /*
  * A sysfs attribute @name below @dir: read without its trailing newline

@@ -290,7 +290,7 @@ static int find_iio_device(const char *what, char *dir, size_t size)
 {
 	if (iio_find_device(NULL, dir, size)) {
 		fprintf(stderr, "as9888-calibd: %s: no %s IIO device: " REMEDY_NO_DRIVER "\n",
-			what, IIO_DEVICE_NAME);
+			what, IIO_ACCEL_NAME);
 		return -ENODEV;
 	}
 

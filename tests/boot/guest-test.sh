@@ -23,10 +23,10 @@ ok() { echo "BOOTTEST ok - $*"; }
 bad() { echo "BOOTTEST not ok - $*"; }
 check() { local what=$1; shift; if "$@"; then ok "$what"; else bad "$what"; fi; }
 
-dev() {	# the as9888 IIO device's sysfs directory
+dev() {	# the sysfs directory of the IIO device named $1, default the accelerometer's
 	local d
 	for d in /sys/bus/iio/devices/iio:device*; do
-		[ "$(cat "$d/name" 2>/dev/null)" = as9888 ] && { readlink -f "$d"; return 0; }
+		[ "$(cat "$d/name" 2>/dev/null)" = "${1:-as9888-accel}" ] && { readlink -f "$d"; return 0; }
 	done
 	return 1
 }
@@ -66,6 +66,10 @@ restore_unit() { systemctl list-units --all --plain --no-legend 'as9888-calibd-r
 
 echo "BOOTTEST phase $phase, kernel $(uname -r), systemd $(systemctl --version | awk 'NR == 1 { print $2 }')"
 check "the AS9888 IIO device is there (driver from DKMS, adapter at boot)" wait_dev
+check "its magnetometer device (as9888-magn) beside it, below the same bus device" \
+	eval 'm=$(dev as9888-magn) && [ "$(dirname "$m")" = "$(dirname "$(dev)")" ]'
+check "one restore unit: the magnetometer device starts none" \
+	eval '[ "$(systemctl list-units --all --plain --no-legend "as9888-calibd-restore@*" | wc -l)" -eq 1 ]'
 check "driver modules from the DKMS tree" eval 'modinfo -n as9888_i2c | grep -q /updates/dkms/'
 # (multi-user.target is reached: this unit is ordered after it)
 failed=$(systemctl --failed --plain --no-legend | awk '{ print $1 }' | grep -v as9888-boottest | tr '\n' ' ')

@@ -149,8 +149,16 @@ check "no record yet: exit 1, says to run the factory test first" \
 	eval '[ $rc -eq 1 ] && says "cannot open $work/none/cal: No such file or directory: no record yet: run factory-test first" err'
 AS9888_SYSFS=$work/sys run factory-test --backend iio --record "$work/none/cal"
 check "--backend iio and no driver bound: exit 1, says to load it or use the raw backend" \
-	eval '[ $rc -eq 1 ] && says "no as9888 IIO device: the driver is not bound: load as9888_i2c (or as9888_spi)" err && \
+	eval '[ $rc -eq 1 ] && says "no as9888-accel IIO device: the driver is not bound: load as9888_i2c (or as9888_spi)" err && \
 	      says "or use --backend raw" err && [ ! -e "$work/none/cal" ]'
+# the chip's magnetometer device alone is not the device calibrated
+magn=$work/sys-magn/devices/i2c/1-000c/iio:device1
+mkdir -p "$magn" "$work/sys-magn/bus/iio/devices"
+ln -s ../../../devices/i2c/1-000c/iio:device1 "$work/sys-magn/bus/iio/devices/iio:device1"
+printf 'as9888-magn\n' >"$magn/name"
+AS9888_SYSFS=$work/sys-magn run factory-test --backend iio --record "$work/none/cal"
+check "--backend iio with only the magnetometer device (as9888-magn): exit 1, no as9888-accel device" \
+	eval '[ $rc -eq 1 ] && says "no as9888-accel IIO device: the driver is not bound" err && [ ! -e "$work/none/cal" ]'
 # a user who may not: nobody when run as root, else this user against
 # modes that shut out even the owner
 if [ "$(id -u)" -eq 0 ] && id nobody >/dev/null 2>&1; then

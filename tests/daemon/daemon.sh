@@ -45,9 +45,13 @@ PY
 sys=$work/sys
 bus=$sys/devices/i2c/1-000c
 dev=$bus/iio:device0
-mkdir -p "$dev" "$bus/as9888-eeprom0" "$sys/bus/iio/devices" "$sys/devices/i2c/1-0050/iio:device1"
+# with the chip's magnetometer device beside its accelerometer's
+mkdir -p "$dev" "$bus/iio:device2" "$bus/as9888-eeprom0" "$sys/bus/iio/devices" \
+	"$sys/devices/i2c/1-0050/iio:device1"
 ln -s ../../../devices/i2c/1-000c/iio:device0 "$sys/bus/iio/devices/iio:device0"
-printf 'as9888\n' >"$dev/name"
+ln -s ../../../devices/i2c/1-000c/iio:device2 "$sys/bus/iio/devices/iio:device2"
+printf 'as9888-accel\n' >"$dev/name"
+printf 'as9888-magn\n' >"$bus/iio:device2/name"
 printf 'bmc150_accel\n' >"$sys/devices/i2c/1-0050/iio:device1/name"
 printf '\x9a\x71\x15\x5c\x80\x85\x7b\x1c\x63\xa2\x38\xe6\x9c\x0d\x8f\x8c\x04\x65\xc3\x88\x50' \
 	>"$bus/as9888-eeprom0/nvmem"
@@ -106,9 +110,12 @@ check "driver rebound (bind, then the IIO device's add): calibration applied" wa
 reset_attrs
 uevent "add@/devices/i2c/1-0050/iio:device1" "ACTION=add" \
 	"DEVPATH=/devices/i2c/1-0050/iio:device1" "SUBSYSTEM=iio" "DEVTYPE=iio_device"
+# the chip's magnetometer device has no calibration: it applies nothing
+uevent "add@/devices/i2c/1-000c/iio:device2" "ACTION=add" \
+	"DEVPATH=/devices/i2c/1-000c/iio:device2" "SUBSYSTEM=iio" "DEVTYPE=iio_device"
 uevent "remove@/devices/i2c/1-000c/iio:device0" "ACTION=remove" "SUBSYSTEM=iio" "DEVTYPE=iio_device"
 sleep 0.3
-check "other devices and removals leave it alone" eval '! applied'
+check "other devices, the magnetometer device and removals leave it alone" eval '! applied'
 
 out=$("$calibd" request status --socket "$sock")
 check "request status" eval 'grep -q "^Chip 676f64b435a720ba" <<<"$out" && grep -q "^exit status 0" <<<"$out"'

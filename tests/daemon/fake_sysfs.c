@@ -68,6 +68,44 @@ void fake_reset_calibration(const struct fake_sysfs *f)
 	fake_put(f->dev, "in_accel_calibtemp", "23750\n");
 }
 
+/* iio:device@n of the bus device 1-000c, named @name, with its bus link */
+static void add_iio_device(const struct fake_sysfs *f, unsigned int n,
+			   const char *name, char *dir, size_t size)
+{
+	char link[1024], target[128], text[64];
+
+	assert_true(snprintf(dir, size, "%s/devices/i2c/1-000c/iio:device%u",
+			     f->root, n) < (int)size);
+	fake_mkdir(dir, ".");
+	snprintf(link, sizeof(link), "%s/bus/iio/devices/iio:device%u", f->root, n);
+	snprintf(target, sizeof(target), "../../../devices/i2c/1-000c/iio:device%u", n);
+	assert_int_equal(symlink(target, link), 0);
+	snprintf(text, sizeof(text), "%s\n", name);
+	fake_put(dir, "name", text);
+}
+
+/* rename @from to @to, both below @root */
+static void fake_rename(const char *root, const char *from, const char *to)
+{
+	char a[1024], b[1024];
+
+	snprintf(a, sizeof(a), "%s/%s", root, from);
+	snprintf(b, sizeof(b), "%s/%s", root, to);
+	assert_int_equal(rename(a, b), 0);
+}
+
+void fake_magn_present(const struct fake_sysfs *f, bool present)
+{
+	static const char *const moved[][2] = {
+		{ "devices/i2c/1-000c/iio:device1", "gone-magn" },
+		{ "bus/iio/devices/iio:device1", "gone-magn-link" },
+	};
+	size_t i;
+
+	for (i = 0; i < sizeof(moved) / sizeof(moved[0]); i++)
+		fake_rename(f->root, moved[i][present], moved[i][!present]);
+}
+
 int fake_sysfs_setup(void **state)
 {
 	struct fake_sysfs *f = calloc(1, sizeof(*f));
@@ -76,14 +114,10 @@ int fake_sysfs_setup(void **state)
 	assert_non_null(f);
 	snprintf(f->root, sizeof(f->root), "/tmp/as9888-sysfs-XXXXXX");
 	assert_non_null(mkdtemp(f->root));
-	snprintf(f->dev, sizeof(f->dev), "%s/devices/i2c/1-000c/iio:device0",
-		 f->root);
-	fake_mkdir(f->dev, ".");
 	fake_mkdir(f->root, "devices/i2c/1-000c/as9888-eeprom0");
 	fake_mkdir(f->root, "bus/iio/devices");
-	snprintf(path, sizeof(path), "%s/bus/iio/devices/iio:device0", f->root);
-	assert_int_equal(symlink("../../../devices/i2c/1-000c/iio:device0", path), 0);
-	fake_put(f->dev, "name", "as9888\n");
+	add_iio_device(f, 0, "as9888-accel", f->dev, sizeof(f->dev));
+	add_iio_device(f, 1, "as9888-magn", f->magn, sizeof(f->magn));
 	fake_put(f->dev, "in_accel_x_calibbias", "0\n");
 	fake_put(f->dev, "in_accel_y_calibbias", "0\n");
 	fake_put(f->dev, "in_accel_z_calibbias", "0\n");

@@ -1,17 +1,20 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * A sysfs tree laid out like the AS9888 driver's, in a temporary directory
- * for the tests that read and write the driver's attributes:
+ * for the tests that read and write the driver's attributes: one chip, its
+ * two IIO devices siblings below the bus device
  *
- *   <root>/devices/i2c/1-000c/iio:device0/	the device's attributes
+ *   <root>/devices/i2c/1-000c/iio:device0/	as9888-accel, its attributes
+ *   <root>/devices/i2c/1-000c/iio:device1/	as9888-magn
  *   <root>/devices/i2c/1-000c/as9888-eeprom0/nvmem	the example EEPROM
- *   <root>/bus/iio/devices/iio:device0 ->	the bus link
+ *   <root>/bus/iio/devices/iio:device{0,1} ->	the bus links
  *
  * $AS9888_SYSFS points at <root>. Failures end the calling cmocka test.
  */
 #ifndef AS9888_FAKE_SYSFS_H
 #define AS9888_FAKE_SYSFS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -23,11 +26,13 @@ extern const uint8_t fake_example_eeprom[AS9888_EEPROM_LEN];
 /**
  * struct fake_sysfs - one tree
  * @root:	its top, $AS9888_SYSFS
- * @dev:	the IIO device's directory
+ * @dev:	the accelerometer IIO device's directory
+ * @magn:	the magnetometer IIO device's directory
  */
 struct fake_sysfs {
 	char root[64];
 	char dev[256];
+	char magn[256];
 };
 
 /* cmocka group set-up and tear-down: *@state is a struct fake_sysfs */
@@ -42,6 +47,13 @@ void fake_put_bytes(const char *dir, const char *name, const void *data,
 void fake_get(const char *dir, const char *name, char *buf, size_t size);
 /* mkdir -p @dir/@sub */
 void fake_mkdir(const char *dir, const char *sub);
+
+/*
+ * Take the magnetometer device away (@present false: its directory and
+ * bus link are moved aside, as with a driver that registers none) or put
+ * it back
+ */
+void fake_magn_present(const struct fake_sysfs *f, bool present);
 
 /* The driver's calibration after probe: zero offsets at t_RT (23.750 degC) */
 void fake_reset_calibration(const struct fake_sysfs *f);

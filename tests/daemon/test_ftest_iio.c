@@ -8,14 +8,27 @@
  * cannot use must stop the test with a message that says which and why.
  * A buffer another program keeps enabled past --busy-timeout stops the
  * test at 1-4 with a message that says what to do, and changes nothing.
+ *
+ * Step 2 runs on the chip's other IIO device, the magnetometer's
+ * (as9888-magn beside as9888-accel): its selftest attribute is a FIFO here,
+ * answered by a thread as the driver would (the "1" written, then the
+ * verdict), and its debugfs readings are judged. Without the magnetometer
+ * device step 2 fails, naming where it is missing.
  */
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdatomic.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -41,18 +54,19 @@ static const char *const initial[][2] = {
 	{ SCAN "/in_accel_y_en", "0" },
 	{ SCAN "/in_accel_z_en", "0" },
 	{ SCAN "/in_temp_en", "0" },
-	{ SCAN "/in_magn_x_en", "1" },
 	{ SCAN "/in_timestamp_en", "1" },
 };
 
-/* The driver's buffer: compensated accelerometer, TMPS, magnetometer */
+/*
+ * The accelerometer device's buffer: compensated accelerometer, TMPS and
+ * the timestamp (the magnetometer's channels are on its own device)
+ */
 static const char *const scan_types[][3] = {
 	{ "in_accel_x", "0", "le:s16/16>>0" },
 	{ "in_accel_y", "1", "le:s16/16>>0" },
 	{ "in_accel_z", "2", "le:s16/16>>0" },
-	{ "in_temp", "6", "le:u8/16>>0" },
-	{ "in_magn_x", "3", "le:s13/16>>0" },
-	{ "in_timestamp", "7", "le:s64/64>>0" },
+	{ "in_temp", "3", "le:u8/16>>0" },
+	{ "in_timestamp", "4", "le:s64/64>>0" },
 };
 
 static void put_initial(const struct fake_sysfs *f)
@@ -138,6 +152,110 @@ static void run(const struct fake_sysfs *f, struct ftest_result *res)
 	run_for(f, res, FTEST_BUSY_TIMEOUT_MS_DEFAULT);
 }
 
+/*
+ * Steps 1, 2 and as much of 3 as goes without the driver: a failed
+ * judgment returns 0, an interface that fails -errno
+ */
+static int run_with_step2(const struct fake_sysfs *f, struct ftest_result *res)
+{
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	o.lpf = true;
+	memset(res, 0, sizeof(*res));
+
+	return ftest_run_iio(f->dev, &o, res);
+}
+
+/*
+ * The driver's selftest attribute of the magnetometer device, as a FIFO
+ * answered by a thread: what the test writes, then @verdict to read
+ */
+struct selftest_fifo {
+	char path[600];
+	const char *verdict;
+	char written[16];
+	pthread_t thread;
+	atomic_bool done;
+};
+
+static void *answer_selftest(void *arg)
+{
+	struct selftest_fifo *s = arg;
+	ssize_t n, have = 0;
+	int fd;
+
+	fd = open(s->path, O_RDONLY);
+	if (fd < 0)
+		return NULL;
+	while ((n = read(fd, s->written + have,
+			 sizeof(s->written) - 1 - (size_t)have)) > 0)
+		have += n;
+	close(fd);
+	fd = open(s->path, O_WRONLY);
+	if (fd < 0)
+		return NULL;
+	n = write(fd, s->verdict, strlen(s->verdict));
+	close(fd);
+	atomic_store(&s->done, n == (ssize_t)strlen(s->verdict));
+
+	return NULL;
+}
+
+static void selftest_fifo_start(const struct fake_sysfs *f,
+				struct selftest_fifo *s, const char *verdict)
+{
+	memset(s, 0, sizeof(*s));
+	snprintf(s->path, sizeof(s->path), "%s/selftest", f->magn);
+	s->verdict = verdict;
+	assert_int_equal(mkfifo(s->path, 0600), 0);
+	assert_int_equal(pthread_create(&s->thread, NULL, answer_selftest, s), 0);
+}
+
+/* Wait for the thread; one the test never answered is cancelled */
+static bool selftest_fifo_stop(struct selftest_fifo *s)
+{
+	bool done = atomic_load(&s->done);
+
+	if (!done)
+		pthread_cancel(s->thread);
+	pthread_join(s->thread, NULL);
+	unlink(s->path);
+
+	return atomic_load(&s->done);
+}
+
+/*
+ * The magnetometer's adjusted readings in debugfs (iio:device1), and other
+ * ones, outside the windows, where the accelerometer device's would be
+ */
+static void put_selftest_readings(const struct fake_sysfs *f, const char *magn)
+{
+	char dir[512];
+
+	snprintf(dir, sizeof(dir), "%s/debug", f->root);
+	setenv("AS9888_DEBUGFS", dir, 1);
+	fake_mkdir(f->root, "debug/iio/iio:device0");
+	fake_mkdir(f->root, "debug/iio/iio:device1");
+	snprintf(dir, sizeof(dir), "%s/debug/iio/iio:device0", f->root);
+	fake_put(dir, "selftest_readings", "0.000 0.000 0.000\n");
+	snprintf(dir, sizeof(dir), "%s/debug/iio/iio:device1", f->root);
+	fake_put(dir, "selftest_readings", magn);
+}
+
+static void expect_pass(const struct report *r, const char *step,
+			const char *name, const char *measured)
+{
+	const struct judgment *j = find(r, step, name);
+
+	if (j->result != JUDGMENT_PASS)
+		fail_msg("%s \"%s\": %s, \"%s\"", step, name,
+			 judgment_result_str(j->result), j->measured);
+	if (measured && !strstr(j->measured, measured))
+		fail_msg("%s \"%s\": \"%s\", not \"%s\"", step, name,
+			 j->measured, measured);
+}
+
 static void attributes_put_back(void **state)
 {
 	const struct fake_sysfs *f = *state;
@@ -208,12 +326,130 @@ static void held_buffer_stops(void **state)
 	put_initial(f);
 }
 
+/*
+ * A run with step 2 against the magnetometer device's @readings in debugfs
+ * and the driver's @verdict: its result in @res, its return value; the
+ * test fails unless the run wrote "1" to the magnetometer device's
+ * selftest and read the verdict
+ */
+static int run_selftest(const struct fake_sysfs *f, const char *readings,
+			const char *verdict, struct ftest_result *res)
+{
+	struct selftest_fifo st;
+	bool answered;
+	int ret;
+
+	put_initial(f);
+	put_selftest_readings(f, readings);
+	selftest_fifo_start(f, &st, verdict);
+	ret = run_with_step2(f, res);
+	answered = selftest_fifo_stop(&st);
+	unsetenv("AS9888_DEBUGFS");
+	if (!answered)
+		fail_msg("the magnetometer device's selftest was not run and read (written \"%s\"); first failure %s",
+			 st.written, report_first_failure(&res->report) ?
+			 report_first_failure(&res->report)->measured : "none");
+	assert_string_equal(st.written, "1");
+
+	return ret;
+}
+
+/*
+ * Step 2 through the magnetometer device: the selftest attribute and the
+ * debugfs readings are its own, not the accelerometer device's
+ */
+static void selftest_through_magn(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+	char magn[PATH_MAX];
+	int ret;
+
+	if (!access("/dev/iio:device0", F_OK))
+		skip();
+	assert_non_null(realpath(f->magn, magn));
+	ret = run_selftest(f, "-19.922 15.234 598.828\n", "pass\n", &res);
+	expect_pass(&res.report, "2-4", "magnetometer device", magn);
+	expect_pass(&res.report, "2-4", "measurement completes", magn);
+	expect_pass(&res.report, "2-15", "self-test verdict readable", "pass");
+	expect_pass(&res.report, "2-17", "self-test X after adjustment", "-19.92");
+	expect_pass(&res.report, "2-19", "self-test Y after adjustment", "15.23");
+	expect_pass(&res.report, "2-21", "self-test Z after adjustment", "598.83");
+	expect_pass(&res.report, "2-13", "normal measurement without overflow",
+		    "pass");
+	/* step 2 passed whole: the first failure is the absent chardev */
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_string_equal(j->step, "3-3");
+	assert_true(ret < 0);
+	all_put_back(f);
+	ftest_result_free(&res);
+}
+
+/* The driver's "fail" with readings outside a window fails step 2 */
+static void selftest_fail_through_magn(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+
+	assert_int_equal(run_selftest(f, "-19.922 15.234 120.000\n", "fail\n",
+				      &res), 0);
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_string_equal(j->step, "2-21");
+	assert_string_equal(j->measured, "120.00");
+	all_put_back(f);
+	ftest_result_free(&res);
+}
+
+/*
+ * No magnetometer device beside the accelerometer's: step 2 fails at once,
+ * saying where it looked; no self-test judgment passes
+ */
+static void selftest_without_magn_fails(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+	char bus[PATH_MAX], want[PATH_MAX + 16];
+	size_t i;
+
+	assert_non_null(realpath(f->magn, bus));
+	*strrchr(bus, '/') = '\0';
+	put_initial(f);
+	put_selftest_readings(f, "-19.922 15.234 598.828\n");
+	fake_magn_present(f, false);
+	assert_int_equal(run_with_step2(f, &res), 0);
+	fake_magn_present(f, true);
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_string_equal(j->step, "2-4");
+	assert_string_equal(j->name, "magnetometer device");
+	assert_string_equal(j->limits, "the chip's as9888-magn IIO device");
+	snprintf(want, sizeof(want), "none in %s: ", bus);
+	if (strncmp(j->measured, want, strlen(want)))
+		fail_msg("unclear: %s", j->measured);
+	for (i = 0; i < res.report.count; i++)
+		if (!strncmp(res.report.items[i].step, "2-", 2) &&
+		    res.report.items[i].result == JUDGMENT_PASS)
+			fail_msg("%s \"%s\" passed without the magnetometer",
+				 res.report.items[i].id, res.report.items[i].name);
+	all_put_back(f);
+	ftest_result_free(&res);
+	unsetenv("AS9888_DEBUGFS");
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(attributes_put_back),
 		cmocka_unit_test(unusable_calibration_stops),
 		cmocka_unit_test(held_buffer_stops),
+		cmocka_unit_test(selftest_through_magn),
+		cmocka_unit_test(selftest_fail_through_magn),
+		cmocka_unit_test(selftest_without_magn_fails),
 	};
 
 	return cmocka_run_group_tests_name("ftest-iio", tests, setup,

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * Kernel uevent parsing and the IIO restore path against a sysfs tree laid
- * out like the driver's (iio:deviceN with its attributes, the NVMEM
- * provider beside it, the bus/iio/devices symlink) and a debugfs tree:
- * what a record puts into calibbias, caliboffset and calibtemp, and the
- * driver's values the daemon refuses to read.
+ * out like the driver's (the accelerometer's iio:deviceN with its
+ * attributes, the magnetometer's iio:deviceM and the NVMEM provider beside
+ * it, the bus/iio/devices symlinks) and a debugfs tree: which device is
+ * found for what, what a record puts into calibbias, caliboffset and
+ * calibtemp, and the driver's values the daemon refuses to read.
  */
 #include <errno.h>
 #include <setjmp.h>
@@ -13,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <limits.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -137,6 +139,75 @@ static void find_device(void **state)
 			 -ENOENT);
 	assert_int_equal(iio_find_device("/devices/i2c/1-000c/../1-000c", dir,
 					 sizeof(dir)), -ENOENT);
+	/* the magnetometer device is not the one calibrated */
+	assert_int_equal(iio_find_device("/devices/i2c/1-000c/iio:device1", dir,
+					 sizeof(dir)), -ENOENT);
+}
+
+/* An IIO device @name as iio:device@n below @bus (e.g. "devices/i2c/1-000d") */
+static void add_device(const struct fake_sysfs *f, const char *bus,
+		       unsigned int n, const char *name)
+{
+	char sub[256], dir[512], text[64];
+
+	snprintf(sub, sizeof(sub), "%s/iio:device%u", bus, n);
+	fake_mkdir(f->root, sub);
+	snprintf(dir, sizeof(dir), "%s/%s", f->root, sub);
+	snprintf(text, sizeof(text), "%s\n", name);
+	fake_put(dir, "name", text);
+}
+
+/* realpath() of @path, failing the test when it has none */
+static void resolved(const char *path, char *out)
+{
+	if (!realpath(path, out))
+		fail_msg("%s: %s", path, strerror(errno));
+}
+
+/* The magnetometer of the same chip: the sibling below the same bus device */
+static void find_magn(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char link[IIO_PATH_MAX], dir[IIO_PATH_MAX], parent[IIO_PATH_MAX];
+	char want[PATH_MAX], want_parent[PATH_MAX], other[512];
+
+	resolved(f->magn, want);
+	snprintf(other, sizeof(other), "%s/devices/i2c/1-000c", f->root);
+	resolved(other, want_parent);
+	/* from the bus link, as iio_find_device(NULL) gives it */
+	snprintf(link, sizeof(link), "%s/bus/iio/devices/iio:device0", f->root);
+	assert_int_equal(iio_find_magn(link, dir, sizeof(dir), parent,
+				       sizeof(parent)), 0);
+	assert_string_equal(dir, want);
+	assert_string_equal(parent, want_parent);
+	assert_int_equal(iio_find_magn(f->dev, dir, sizeof(dir), NULL, 0), 0);
+	assert_string_equal(dir, want);
+
+	/* a second chip's devices: each accelerometer finds its own */
+	add_device(f, "devices/i2c/1-000d", 3, "as9888-magn");
+	add_device(f, "devices/i2c/1-000d", 2, "as9888-accel");
+	add_device(f, "devices/i2c/1-000d", 4, "bmc150_magn");
+	assert_int_equal(iio_find_magn(f->dev, dir, sizeof(dir), NULL, 0), 0);
+	assert_string_equal(dir, want);
+	snprintf(other, sizeof(other), "%s/devices/i2c/1-000d/iio:device2", f->root);
+	assert_int_equal(iio_find_magn(other, dir, sizeof(dir), NULL, 0), 0);
+	snprintf(other, sizeof(other), "%s/devices/i2c/1-000d/iio:device3", f->root);
+	resolved(other, want);
+	assert_string_equal(dir, want);
+
+	/* none beside it: -ENOENT, and where it was looked for */
+	fake_magn_present(f, false);
+	*parent = '\0';
+	assert_int_equal(iio_find_magn(link, dir, sizeof(dir), parent,
+				       sizeof(parent)), -ENOENT);
+	assert_string_equal(parent, want_parent);
+	fake_magn_present(f, true);
+	/* an accelerometer directory that does not exist */
+	snprintf(other, sizeof(other), "%s/devices/i2c/1-000e/iio:device5", f->root);
+	*parent = '\0';
+	assert_int_equal(iio_find_magn(other, dir, sizeof(dir), parent,
+				       sizeof(parent)), -ENOENT);
+	assert_string_equal(parent, "");
 }
 
 static void expect(const struct fake_sysfs *f, const char *name,
@@ -338,6 +409,7 @@ int main(void)
 		cmocka_unit_test(parse_not_appearance),
 		cmocka_unit_test(parse_garbage),
 		cmocka_unit_test(find_device),
+		cmocka_unit_test(find_magn),
 		cmocka_unit_test(restore_applies),
 		cmocka_unit_test(restore_refuses_other_chip),
 		cmocka_unit_test(restore_refuses_simulated_record),

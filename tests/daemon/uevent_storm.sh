@@ -49,7 +49,7 @@ bus=$sys/devices/i2c/1-000c
 dev=$bus/iio:device0
 mkdir -p "$dev" "$bus/as9888-eeprom0" "$sys/bus/iio/devices"
 ln -s ../../../devices/i2c/1-000c/iio:device0 "$sys/bus/iio/devices/iio:device0"
-printf 'as9888\n' >"$dev/name"
+printf 'as9888-accel\n' >"$dev/name"
 printf '\x9a\x71\x15\x5c\x80\x85\x7b\x1c\x63\xa2\x38\xe6\x9c\x0d\x8f\x8c\x04\x65\xc3\x88\x50' \
 	>"$bus/as9888-eeprom0/nvmem"
 for a in x y z; do
