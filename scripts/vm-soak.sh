@@ -1,0 +1,62 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# vm-soak.sh [RUNS] [6.1|7.2|all]
+#
+# The VM bench on a busy machine (issue 12, item 6): RUNS (default 3)
+# back-to-back runs of scripts/vm-run.sh on the kernels named (default
+# both), each with a CPU hog beside it (stress-ng with one CPU worker per
+# core, "stress-ng --cpu N"), so that every guest test runs slower than on
+# an idle machine. The bench has no total time budget, only its stall
+# watchdog (AS9888_VM_STALL), so a slow run must still pass: this script
+# proves it. Not part of scripts/test.sh (it takes about an hour on two
+# cores); the README names it.
+#
+# Prints, per run, the bench's own "<k>: N passed, N failed (T s in QEMU)"
+# lines and the wall time of the run, then a summary line
+# "vm-soak: R runs, F failed"; exit status 0 only when every run passed.
+# Logs: $AS9888_CACHE/logs/vm-soak-<run>.log.
+set -euo pipefail
+
+# shellcheck source-path=SCRIPTDIR source=kernel-common.sh
+. "$(dirname "$0")/kernel-common.sh"
+
+runs=${1:-3}
+shift || true
+case "$runs" in
+'' | *[!0-9]*) die "RUNS must be a positive number, not '$runs'" ;;
+esac
+[ "$runs" -ge 1 ] || die "RUNS must be at least 1"
+
+ensure_pkgs stress-ng
+mkdir -p "$LOG_DIR"
+
+hog_pid=
+stop_hog() {
+	[ -n "$hog_pid" ] || return 0
+	kill "$hog_pid" 2>/dev/null || true
+	wait "$hog_pid" 2>/dev/null || true
+	hog_pid=
+}
+trap stop_hog EXIT
+
+failed=0
+for ((r = 1; r <= runs; r++)); do
+	log="$LOG_DIR/vm-soak-$r.log"
+	stress-ng --cpu "$(nproc)" --quiet >/dev/null 2>&1 &
+	hog_pid=$!
+	t=$(now)
+	if "$AS9888_REPO/scripts/vm-run.sh" "$@" >"$log" 2>&1; then
+		verdict=pass
+	else
+		verdict=FAIL
+		failed=$((failed + 1))
+	fi
+	stop_hog
+	log "run $r of $runs beside stress-ng --cpu $(nproc): $verdict in $(since "$t") (log: $log)"
+	grep -E '^(6\.1|7\.2): [0-9]+ passed' "$log" | sed 's/^/  /' || true
+	[ "$verdict" = pass ] || grep -E 'not ok|stall|splat' "$log" | head -n 10 | sed 's/^/  /' || true
+done
+
+log "vm-soak: $runs runs, $failed failed"
+[ "$failed" -eq 0 ]
