@@ -92,6 +92,9 @@ enum as9888_sensor_id {
  *		its own clock), for measurements waited for synchronously
  * @trig_running: the data-ready trigger runs; written under @lock, read
  *		locklessly while waiting for the next sampling period
+ * @gap_waiters: how many wait for the gap between two samples of the
+ *		data-ready trigger; written under @lock, read locklessly by
+ *		the trigger before it starts its next sample
  * @trig_busy:	a sample of the data-ready trigger is in flight or its
  *		handlers are not done with it: the chip is not free for
  *		anything else. Written under @lock, read locklessly by the
@@ -136,6 +139,7 @@ struct as9888_chip {
 	s64 drdy_ts[AS9888_SENSORS];
 	bool trig_running;
 	bool trig_busy;
+	unsigned int gap_waiters;
 
 	/* Serialises the register access sequences, see @lock above */
 	struct mutex lock;

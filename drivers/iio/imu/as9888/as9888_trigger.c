@@ -71,6 +71,12 @@ static unsigned long as9888_trig_wait_jiffies(const struct as9888_chip *chip)
  * @chip: chip state, with chip->lock held; the lock is dropped while
  *	  waiting
  *
+ * A waiter is counted in chip->gap_waiters, and the trigger does not start
+ * its next sample while one is counted: the gap is handed over. Without
+ * that, the trigger's thread, which runs at real-time priority and starts
+ * the next sample at once when it is late, would take the chip back
+ * before the woken waiter ever ran.
+ *
  * Return: 0 with chip->lock held and no measurement of the data-ready
  * trigger in flight, or -ETIMEDOUT when the trigger's sample did not come
  * (also with chip->lock held).
@@ -78,10 +84,15 @@ static unsigned long as9888_trig_wait_jiffies(const struct as9888_chip *chip)
 int as9888_wait_gap(struct as9888_chip *chip)
 {
 	unsigned long left;
+	int ret = 0;
 
 	lockdep_assert_held(&chip->lock);
 
+	if (!chip->trig_busy)
+		return 0;
+
 	left = as9888_trig_wait_jiffies(chip);
+	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters + 1);
 	while (chip->trig_busy) {
 		mutex_unlock(&chip->lock);
 		left = wait_event_timeout(chip->gap_wq,
@@ -90,11 +101,14 @@ int as9888_wait_gap(struct as9888_chip *chip)
 		if (!left && chip->trig_busy) {
 			dev_err_ratelimited(chip->dev,
 					    "data-ready trigger stalled\n");
-			return -ETIMEDOUT;
+			ret = -ETIMEDOUT;
+			break;
 		}
 	}
+	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters - 1);
+	wake_up_all(&chip->gap_wq);
 
-	return 0;
+	return ret;
 }
 
 /* The handlers are done with the sample, or it never comes: the gap */
@@ -222,6 +236,9 @@ static void as9888_trig_reenable(struct iio_trigger *trig)
 		wait_event_hrtimeout(chip->stop_wq,
 				     !READ_ONCE(chip->trig_running),
 				     ns_to_ktime(wait_ns));
+
+	/* The gap is handed over to whoever waits for it, see as9888_wait_gap() */
+	wait_event(chip->gap_wq, !READ_ONCE(chip->gap_waiters));
 
 	guard(mutex)(&chip->lock);
 	if (chip->trig_gen != gen)
