@@ -10,6 +10,9 @@
 #  - a lost INT1 edge and failed starts: the data-ready trigger recovers
 #    (its watchdog) instead of stalling with the buffer enabled.
 # Waits are bounded but generous: a busy host slows the guest down.
+# Runs on its own too (AS9888_VM_ONLY=66-pm-wiring): loads the modules.
+load_driver
+load_sim
 set_unit "temperature = 25" "noise = 0"
 
 # pm_dev NAME: the IIO device directory named NAME, waiting up to 10 s
