@@ -219,7 +219,8 @@ check "bad interrupt specifier: the driver names the interrupt" \
 	sh -c "dmesg | tail -n +$((_n0 + 1)) | grep -q 'cannot get interrupt INT1'"
 
 # INT1 as a level-high interrupt: the driver deasserts it (INT1ST) before
-# it is unmasked again, so one interrupt per sample, no storm
+# it is unmasked again, so about one interrupt per sample, no storm (a
+# line left high fires again each time it is unmasked: thousands a second)
 _n1=$(dmesg | wc -l)
 echo int1-level > $SIM/wiring
 ACC=$(pm_dev as9888-accel)
@@ -239,8 +240,8 @@ pm_buf_off $ACC
 _s=$(($(wc -c < /tmp/pm-drain) / 16))
 diag "INT1 level-high: $((_m1 - _m0)) measurements, $((_i1 - _i0)) interrupts, $_s samples"
 check "INT1 level-high: samples captured ($_s)" test "$_s" -ge 10
-check "INT1 level-high: one interrupt per measurement ($((_i1 - _i0)) for $((_m1 - _m0)))" \
-	test $((_i1 - _i0)) -le $((_m1 - _m0 + 2))
+check "INT1 level-high: no interrupt storm ($((_i1 - _i0)) for $((_m1 - _m0)) measurements)" \
+	test $((_i1 - _i0)) -le $((2 * (_m1 - _m0) + 5))
 eq "INT1 level-high: no driver message" "$(pm_log_since $_n1)" ""
 
 echo int1 > $SIM/wiring
