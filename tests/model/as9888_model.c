@@ -174,6 +174,7 @@ void as9888_model_init(struct as9888_model *m, const struct as9888_unit *unit,
 	m->rng = m->unit.seed;
 	m->powered = true;
 	m->rstn = true;
+	m->rstn_pin = true;
 	m->boot_end_ns = now_ns + AS9888_T_BOOT_NS;
 	m->pd_since_ns = now_ns;
 	m->mode_since_ns = now_ns;
@@ -409,6 +410,8 @@ void as9888_model_set_power(struct as9888_model *m, u64 now_ns, bool on)
 		return;
 	m->powered = on;
 	if (!on) {
+		if (m->rstn_pin)
+			m->stats.backpowered++;
 		reset_registers(m);
 		m->reset_pending = false;
 		m->stats.power_offs++;
@@ -451,6 +454,9 @@ void as9888_model_set_noise(struct as9888_model *m, u64 now_ns,
 void as9888_model_set_rstn(struct as9888_model *m, u64 now_ns, bool level)
 {
 	as9888_model_advance(m, now_ns);
+	if (!m->powered && level && !m->rstn_pin)
+		m->stats.backpowered++;
+	m->rstn_pin = level;
 	if (has_fault(m, AS9888_FAULT_RSTN_OPEN) || level == m->rstn)
 		return;
 	if (!m->powered) {
@@ -496,6 +502,8 @@ static bool transfer_fails(struct as9888_model *m)
 		m->nak_count = 0;
 		nak = has_fault(m, AS9888_FAULT_NAK);
 	}
+	if (!m->powered)
+		m->stats.unpowered_transfers++;
 	if (!m->powered || !m->rstn || m->now_ns < m->boot_end_ns)
 		nak = true;
 	if (nak)

@@ -24,7 +24,13 @@
  *    power-down at that instant, so t_PD is covered by t_BOOT.
  *  - Supply off (as9888_model_set_power()): like RSTN held low, the chip
  *    does not answer, its registers are at their reset values and the pins
- *    low; power-on starts t_BOOT. The die temperature, the noise generator
+ *    low; power-on starts t_BOOT. A transfer attempted while the supply is
+ *    off is counted in stats.unpowered_transfers (a driver that talks to
+ *    a chip it switched off), and RSTN driven high while the supply is off
+ *    in stats.backpowered (the pin would feed the chip through its ESD
+ *    diodes): once when the supply goes off with RSTN high, once when RSTN
+ *    rises while the supply is off. Both are board-level errors of the
+ *    host, so they are counted whatever the faults (also with rstn_open). The die temperature, the noise generator
  *    and the counters carry on (they belong to the unit, not to the chip's
  *    registers).
  *  - RSTN low: the chip does not answer (I2C NAK / SPI 0xff) while RSTN is
@@ -145,6 +151,8 @@ enum as9888_pin {
  * @aborted:		measurements aborted (MS = 0 or reset)
  * @resets:		reset pulses that took effect
  * @power_offs:		supply switched off
+ * @unpowered_transfers: transfers attempted while the supply was off
+ * @backpowered:	times RSTN was driven high while the supply was off
  */
 struct as9888_model_stats {
 	u64 transfers;
@@ -158,6 +166,8 @@ struct as9888_model_stats {
 	u64 aborted;
 	u64 resets;
 	u64 power_offs;
+	u64 unpowered_transfers;
+	u64 backpowered;
 };
 
 /**
@@ -172,7 +182,8 @@ struct as9888_model {
 
 	/* supply, reset pin and boot */
 	bool powered;			/* supply on */
-	bool rstn;			/* RSTN level */
+	bool rstn;			/* RSTN level the chip sees */
+	bool rstn_pin;			/* RSTN level driven (also rstn_open) */
 	bool reset_pending;		/* low, reset not yet taken effect */
 	u64 rstn_fell_ns;
 	u64 boot_end_ns;		/* accesses fail before this */

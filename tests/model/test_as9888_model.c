@@ -1011,6 +1011,41 @@ static void test_power_off_on(void **state)
 	assert_int_equal(M.stats.power_offs, 1);
 }
 
+/* A host that talks to, or drives RSTN into, a chip it switched off */
+static void test_unpowered_access_counted(void **state)
+{
+	u8 v = 0;
+
+	ready(NULL);
+	/* RSTN high when the supply goes off: back-powering */
+	as9888_model_set_power(&M, T, false);
+	assert_int_equal(M.stats.backpowered, 1);
+	assert_int_equal(as9888_model_read(&M, T, 0, &v, 1), -EIO);
+	assert_int_equal(as9888_model_write(&M, T, AS9888_REG_MS, &v, 1), -EIO);
+	assert_int_equal(M.stats.unpowered_transfers, 2);
+	/* RSTN low, then high while still unpowered: once more */
+	as9888_model_set_rstn(&M, T, false);
+	assert_int_equal(M.stats.backpowered, 1);
+	as9888_model_set_rstn(&M, T, true);
+	assert_int_equal(M.stats.backpowered, 2);
+	as9888_model_set_rstn(&M, T, false);
+	/* the right order: RSTN low, supply off, supply on, RSTN high */
+	as9888_model_set_power(&M, T, true);
+	at(AS9888_T_RSTL_NS);
+	as9888_model_set_rstn(&M, T, true);
+	at(AS9888_T_BOOT_NS);
+	as9888_model_set_rstn(&M, T, false);
+	at(AS9888_T_RSTL_NS);
+	as9888_model_set_power(&M, T, false);
+	as9888_model_set_power(&M, T, true);
+	at(AS9888_T_RSTL_NS);
+	as9888_model_set_rstn(&M, T, true);
+	at(AS9888_T_BOOT_NS);
+	assert_int_equal(rd(AS9888_REG_WIA), AS9888_WIA_VAL);
+	assert_int_equal(M.stats.backpowered, 2);
+	assert_int_equal(M.stats.unpowered_transfers, 2);
+}
+
 static void test_magn_measurements_counted(void **state)
 {
 	boot(NULL);
@@ -2131,6 +2166,7 @@ int main(void)
 		cmocka_unit_test(test_reset_pulse),
 		cmocka_unit_test(test_reset_short_pulse_ignored),
 		cmocka_unit_test(test_power_off_on),
+		cmocka_unit_test(test_unpowered_access_counted),
 		cmocka_unit_test(test_magn_measurements_counted),
 		cmocka_unit_test(test_peek_no_side_effects),
 		cmocka_unit_test(test_reset_boot_nak),

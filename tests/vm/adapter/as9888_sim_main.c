@@ -37,6 +37,21 @@
  *  regs	the chip's configuration and trim registers as it holds them
  *		("0xRR 0xVV" per line), read without a bus transfer
  *  bus		"i2c-N" of the adapter, and the client name
+ *  drop_int1	write N: the next N INT1 edges are not delivered (a glitch,
+ *		an edge lost by the interrupt controller); counted in stats
+ *		as irqs_dropped; read: how many are still to be dropped
+ *  wiring	how the chip's interrupt reaches the driver; writing one
+ *		re-instantiates the device (after a power cycle of the
+ *		chip): "int1" (the default) INT1 as the device's interrupt,
+ *		rising edge; "int1-level" INT1 as a level-high interrupt of
+ *		the adapter's own interrupt controller, which raises it again
+ *		when it is unmasked while INT1 is still high, as a level
+ *		interrupt does (the interrupt simulator has edges only);
+ *		"bad" as "int1" plus interrupt-names = "INT1" on the software
+ *		node, whose interrupts no one can get (a malformed
+ *		specifier); read: the wiring in use
+ *  fail_next	write N: the next N bus transfers fail (I2C NAK, SPI error)
+ *		without reaching the chip; read: how many are left
  * Live environment, without re-creating the chip or the device (registers,
  * a running measurement and the counters stay; every measurement that
  * completes after the write uses the new value; it also holds for a chip
@@ -57,6 +72,7 @@
 #include <linux/interrupt.h>
 #include <linux/irq.h>
 #include <linux/irq_sim.h>
+#include <linux/irq_work.h>
 #include <linux/irqdomain.h>
 #include <linux/ktime.h>
 #include <linux/math64.h>
@@ -93,6 +109,17 @@ enum as9888_sim_knob_id {
 
 static const char *const as9888_sim_knob_keys[AS9888_SIM_NKNOBS] = {
 	"temperature", "up", "noise",
+};
+
+enum as9888_sim_wiring {
+	AS9888_SIM_WIRING_INT1 = 0,
+	AS9888_SIM_WIRING_INT1_LEVEL,
+	AS9888_SIM_WIRING_BAD,
+	AS9888_SIM_NWIRINGS,
+};
+
+static const char *const as9888_sim_wiring_names[AS9888_SIM_NWIRINGS] = {
+	"int1", "int1-level", "bad",
 };
 
 /* Longest value accepted by a knob */
@@ -134,6 +161,9 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @model_xfers: model transfers (reads + writes) since the last zeroing
  * @model_naks:	failed model transfers since the last zeroing
  * @irqs:	INT edges delivered to the interrupt simulator
+ * @irqs_dropped: INT1 edges not delivered (drop_int1)
+ * @drop_int1:	INT1 edges still to drop
+ * @fail_next:	bus transfers still to fail
  * @timer:	wakes up at the model's next event
  * @cfg_lock:	serialises unit/present changes
  * @unit:	the unit in use
@@ -148,6 +178,11 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @dir:	debugfs directory
  * @rdev:	the chip's supply
  * @knobs:	the live environment files of debugfs
+ * @wiring:	how INT1 reaches the driver, under @cfg_lock
+ * @node:	the software node of the device in use
+ * @lvl_domain:	the level-triggered interrupt controller (one line, INT1)
+ * @lvl_work:	raises its interrupt from hard interrupt context
+ * @lvl_masked:	its line is masked
  */
 struct as9888_sim {
 	spinlock_t lock;		/* see @lock above */
@@ -160,6 +195,9 @@ struct as9888_sim {
 	u64 model_xfers;
 	u64 model_naks;
 	u64 irqs;
+	u64 irqs_dropped;
+	u32 drop_int1;
+	u32 fail_next;
 	struct hrtimer timer;
 
 	struct mutex cfg_lock;		/* see @cfg_lock above */
@@ -176,6 +214,11 @@ struct as9888_sim {
 	struct dentry *dir;
 	struct regulator_dev *rdev;
 	struct as9888_sim_knob knobs[AS9888_SIM_NKNOBS];
+	enum as9888_sim_wiring wiring;
+	const struct software_node *node;
+	struct irq_domain *lvl_domain;
+	struct irq_work lvl_work;
+	bool lvl_masked;
 };
 
 static struct as9888_sim *sim;
@@ -207,6 +250,25 @@ static const struct property_entry as9888_sim_props[] = {
 static const struct software_node as9888_sim_dev_node = {
 	.name = "as9888-sim-chip",
 	.properties = as9888_sim_props,
+};
+
+/* wiring=bad: interrupt-names, but a software node has no interrupts */
+static const char * const as9888_sim_bad_int_names[] = { "INT1" };
+
+static const struct property_entry as9888_sim_bad_props[] = {
+	PROPERTY_ENTRY_STRING("compatible", "alsen,as9888"),
+	PROPERTY_ENTRY_STRING_ARRAY("mount-matrix", as9888_sim_mount_matrix),
+	PROPERTY_ENTRY_STRING_ARRAY("interrupt-names", as9888_sim_bad_int_names),
+#ifdef AS9888_SIM_SWNODE_GPIO
+	PROPERTY_ENTRY_GPIO("reset-gpios", &as9888_sim_gpio_node,
+			    AS9888_SIM_RSTN, GPIO_ACTIVE_LOW),
+#endif
+	{ }
+};
+
+static const struct software_node as9888_sim_bad_node = {
+	.name = "as9888-sim-chip-bad",
+	.properties = as9888_sim_bad_props,
 };
 
 #ifndef AS9888_SIM_SWNODE_GPIO
@@ -251,15 +313,27 @@ static unsigned int as9888_sim_edges(struct as9888_sim *s, u64 now)
 		if (lvl == s->pin[i])
 			continue;
 		s->pin[i] = lvl;
+		if (i == AS9888_PIN_INT1 &&
+		    s->wiring == AS9888_SIM_WIRING_INT1_LEVEL) {
+			if (lvl)
+				fire |= BIT(i);
+			continue;
+		}
 		irq = irq_find_mapping(s->domain, AS9888_SIM_INT1 + i);
 		if (!irq)
 			continue;
 		type = irq_get_trigger_type(irq);
 		if (type == IRQ_TYPE_NONE)
 			type = IRQ_TYPE_EDGE_RISING;
-		if ((lvl && (type & IRQ_TYPE_EDGE_RISING)) ||
-		    (!lvl && (type & IRQ_TYPE_EDGE_FALLING)))
-			fire |= BIT(i);
+		if (!((lvl && (type & IRQ_TYPE_EDGE_RISING)) ||
+		      (!lvl && (type & IRQ_TYPE_EDGE_FALLING))))
+			continue;
+		if (i == AS9888_PIN_INT1 && s->drop_int1) {
+			s->drop_int1--;
+			s->irqs_dropped++;
+			continue;
+		}
+		fire |= BIT(i);
 	}
 	return fire;
 }
@@ -275,6 +349,12 @@ static void as9888_sim_fire(struct as9888_sim *s, unsigned int fire)
 
 		if (!(fire & BIT(i)))
 			continue;
+		if (i == AS9888_PIN_INT1 &&
+		    READ_ONCE(s->wiring) == AS9888_SIM_WIRING_INT1_LEVEL) {
+			/* counted when it is raised, also again */
+			irq_work_queue(&s->lvl_work);
+			continue;
+		}
 		irq = irq_find_mapping(s->domain, AS9888_SIM_INT1 + i);
 		if (!irq)
 			continue;
@@ -319,6 +399,64 @@ static void as9888_sim_power_on(struct as9888_sim *s)
 	as9888_sim_arm(s);
 	spin_unlock_irqrestore(&s->lock, flags);
 }
+
+/* --- level-triggered interrupt controller (wiring=int1-level) --------------- */
+
+/* Raise the level line, when it is high and unmasked; hard irq context */
+static void as9888_sim_lvl_work(struct irq_work *work)
+{
+	struct as9888_sim *s = container_of(work, struct as9888_sim, lvl_work);
+	unsigned int irq = irq_find_mapping(s->lvl_domain, 0);
+
+	if (!irq || READ_ONCE(s->lvl_masked) || !READ_ONCE(s->pin[0]))
+		return;
+	spin_lock(&s->lock);
+	s->irqs++;
+	spin_unlock(&s->lock);
+	generic_handle_irq(irq);
+}
+
+static void as9888_sim_lvl_mask(struct irq_data *d)
+{
+	struct as9888_sim *s = irq_data_get_irq_chip_data(d);
+
+	WRITE_ONCE(s->lvl_masked, true);
+}
+
+/* A level interrupt unmasked while its line is still high fires again */
+static void as9888_sim_lvl_unmask(struct irq_data *d)
+{
+	struct as9888_sim *s = irq_data_get_irq_chip_data(d);
+
+	WRITE_ONCE(s->lvl_masked, false);
+	if (READ_ONCE(s->pin[0]))
+		irq_work_queue(&s->lvl_work);
+}
+
+static int as9888_sim_lvl_set_type(struct irq_data *d, unsigned int type)
+{
+	return type == IRQ_TYPE_LEVEL_HIGH ? 0 : -EINVAL;
+}
+
+static struct irq_chip as9888_sim_lvl_chip = {
+	.name = "as9888-sim-level",
+	.irq_mask = as9888_sim_lvl_mask,
+	.irq_unmask = as9888_sim_lvl_unmask,
+	.irq_set_type = as9888_sim_lvl_set_type,
+};
+
+static int as9888_sim_lvl_map(struct irq_domain *d, unsigned int virq,
+			      irq_hw_number_t hw)
+{
+	irq_set_chip_data(virq, d->host_data);
+	irq_set_chip_and_handler(virq, &as9888_sim_lvl_chip, handle_level_irq);
+	return 0;
+}
+
+static const struct irq_domain_ops as9888_sim_lvl_ops = {
+	.map = as9888_sim_lvl_map,
+	.xlate = irq_domain_xlate_onecell,
+};
 
 /* --- supply ---------------------------------------------------------------- */
 
@@ -447,7 +585,14 @@ static int as9888_sim_xfer(struct i2c_adapter *adap, struct i2c_msg *msgs,
 			break;
 		}
 		now = ktime_get_ns();
-		if (m->flags & I2C_M_RD) {
+		/* reg + repeated start + read: one model read */
+		pair = !(m->flags & I2C_M_RD) && m->len == 1 && i + 1 < num &&
+		       (msgs[i + 1].flags & I2C_M_RD);
+		if (s->fail_next && !pair) {
+			/* the transfer never reaches the chip */
+			s->fail_next--;
+			ret = -ENXIO;
+		} else if (m->flags & I2C_M_RD) {
 			ret = as9888_model_read(&s->model, now, s->ptr,
 						m->buf, m->len);
 			s->ptr += m->len;
@@ -456,9 +601,6 @@ static int as9888_sim_xfer(struct i2c_adapter *adap, struct i2c_msg *msgs,
 						 NULL, 0);
 		} else {
 			s->ptr = m->buf[0];
-			pair = m->len == 1 && i + 1 < num &&
-			       (msgs[i + 1].flags & I2C_M_RD);
-			/* reg + repeated start + read: one model read */
 			if (pair)
 				continue;
 			ret = as9888_model_write(&s->model, now, s->ptr,
@@ -524,7 +666,12 @@ static int as9888_sim_spi_transfer(struct spi_controller *ctlr,
 	now = ktime_get_ns();
 	as9888_model_advance(&s->model, now);
 	fire = as9888_sim_edges(s, now);
-	if (total) {
+	if (total && s->fail_next) {
+		/* the transfer never reaches the chip: SO floats high */
+		s->fail_next--;
+		s->model_xfers++;
+		s->model_naks++;
+	} else if (total) {
 		/* bit 7: read; bits 6:0: register; the chip drives SO from byte 1 */
 		if (tx[0] & 0x80)
 			as9888_model_read(&s->model, now, tx[0] & 0x7f, rx + 1,
@@ -654,7 +801,10 @@ static int as9888_sim_gpio_to_irq(struct gpio_chip *gc, unsigned int offset)
  */
 static int as9888_sim_add_client(struct as9888_sim *s)
 {
-	struct fwnode_handle *fwnode = software_node_fwnode(&as9888_sim_dev_node);
+	const struct software_node *node =
+		s->wiring == AS9888_SIM_WIRING_BAD ? &as9888_sim_bad_node :
+						     &as9888_sim_dev_node;
+	struct fwnode_handle *fwnode = software_node_fwnode(node);
 	struct i2c_board_info info = {
 		I2C_BOARD_INFO("as9888", AS9888_SIM_ADDR),
 		.fwnode = fwnode,
@@ -665,12 +815,20 @@ static int as9888_sim_add_client(struct as9888_sim *s)
 
 	if (s->client || s->spi)
 		return 0;
+	s->node = node;
 	/* a device (re)appears on a freshly powered chip */
 	as9888_sim_power_on(s);
-	irq = irq_create_mapping(s->domain, AS9888_SIM_INT1);
-	if (!irq)
-		return -ENXIO;
-	irq_set_irq_type(irq, IRQ_TYPE_EDGE_RISING);
+	if (s->wiring == AS9888_SIM_WIRING_INT1_LEVEL) {
+		irq = irq_create_mapping(s->lvl_domain, 0);
+		if (!irq)
+			return -ENXIO;
+		irq_set_irq_type(irq, IRQ_TYPE_LEVEL_HIGH);
+	} else {
+		irq = irq_create_mapping(s->domain, AS9888_SIM_INT1);
+		if (!irq)
+			return -ENXIO;
+		irq_set_irq_type(irq, IRQ_TYPE_EDGE_RISING);
+	}
 	if (spi) {
 		sdev = spi_alloc_device(s->ctlr);
 		if (!sdev)
@@ -717,7 +875,7 @@ static void as9888_sim_del_client(struct as9888_sim *s)
 		device_unregister(&s->client->dev);
 		s->client = NULL;
 #if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 12, 0)
-		fwnode_handle_put(software_node_fwnode(&as9888_sim_dev_node));
+		fwnode_handle_put(software_node_fwnode(s->node));
 #endif
 	}
 }
@@ -971,7 +1129,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 {
 	struct as9888_sim *s = sf->private;
 	struct as9888_model_stats st;
-	u64 xfers, msgs, mx, mn, irqs;
+	u64 xfers, msgs, mx, mn, irqs, dropped;
 	unsigned long flags;
 
 	spin_lock_irqsave(&s->lock, flags);
@@ -981,6 +1139,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	mx = s->model_xfers;
 	mn = s->model_naks;
 	irqs = s->irqs;
+	dropped = s->irqs_dropped;
 	spin_unlock_irqrestore(&s->lock, flags);
 
 	seq_printf(sf, "bus_calls %llu\n", xfers);
@@ -988,6 +1147,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	seq_printf(sf, "bus_transfers %llu\n", mx);
 	seq_printf(sf, "bus_naks %llu\n", mn);
 	seq_printf(sf, "irqs %llu\n", irqs);
+	seq_printf(sf, "irqs_dropped %llu\n", dropped);
 	seq_printf(sf, "chip_transfers %llu\n", st.transfers);
 	seq_printf(sf, "chip_reads %llu\n", st.reads);
 	seq_printf(sf, "chip_writes %llu\n", st.writes);
@@ -999,6 +1159,9 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	seq_printf(sf, "chip_aborted %llu\n", st.aborted);
 	seq_printf(sf, "chip_resets %llu\n", st.resets);
 	seq_printf(sf, "chip_power_offs %llu\n", st.power_offs);
+	seq_printf(sf, "chip_unpowered_transfers %llu\n",
+		   st.unpowered_transfers);
+	seq_printf(sf, "chip_backpowered %llu\n", st.backpowered);
 	return 0;
 }
 
@@ -1020,6 +1183,7 @@ static ssize_t as9888_sim_stats_write(struct file *file,
 	s->model_xfers = 0;
 	s->model_naks = 0;
 	s->irqs = 0;
+	s->irqs_dropped = 0;
 	spin_unlock_irqrestore(&s->lock, flags);
 	return count;
 }
@@ -1032,6 +1196,80 @@ static const struct file_operations as9888_sim_stats_fops = {
 	.llseek = seq_lseek,
 	.release = single_release,
 };
+
+static ssize_t as9888_sim_wiring_write(struct file *file,
+				       const char __user *ubuf, size_t count,
+				       loff_t *ppos)
+{
+	struct as9888_sim *s = file->private_data;
+	char buf[16];
+	int w, ret;
+
+	if (*ppos || !count || count >= sizeof(buf))
+		return -EINVAL;
+	if (copy_from_user(buf, ubuf, count))
+		return -EFAULT;
+	buf[count] = '\0';
+	w = sysfs_match_string(as9888_sim_wiring_names, buf);
+	if (w < 0)
+		return w;
+	mutex_lock(&s->cfg_lock);
+	as9888_sim_del_client(s);
+	WRITE_ONCE(s->wiring, w);
+	ret = as9888_sim_add_client(s);
+	mutex_unlock(&s->cfg_lock);
+	return ret ?: count;
+}
+
+static ssize_t as9888_sim_wiring_read(struct file *file, char __user *ubuf,
+				      size_t count, loff_t *ppos)
+{
+	struct as9888_sim *s = file->private_data;
+	char buf[16];
+	int len;
+
+	mutex_lock(&s->cfg_lock);
+	len = scnprintf(buf, sizeof(buf), "%s\n",
+			as9888_sim_wiring_names[s->wiring]);
+	mutex_unlock(&s->cfg_lock);
+	return simple_read_from_buffer(ubuf, count, ppos, buf, len);
+}
+
+static const struct file_operations as9888_sim_wiring_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.read = as9888_sim_wiring_read,
+	.write = as9888_sim_wiring_write,
+	.llseek = default_llseek,
+};
+
+/* drop_int1 and fail_next: a count of events to spoil, under sim->lock */
+static int as9888_sim_count_get(void *data, u64 *val)
+{
+	u32 *count = data;
+
+	*val = READ_ONCE(*count);
+	return 0;
+}
+
+static int as9888_sim_count_set(struct as9888_sim *s, u32 *count, u64 val)
+{
+	unsigned long flags;
+
+	if (val > U32_MAX)
+		return -EINVAL;
+	spin_lock_irqsave(&s->lock, flags);
+	*count = val;
+	spin_unlock_irqrestore(&s->lock, flags);
+	return 0;
+}
+
+static int as9888_sim_count_write(void *data, u64 val)
+{
+	return as9888_sim_count_set(sim, data, val);
+}
+DEFINE_DEBUGFS_ATTRIBUTE(as9888_sim_count_fops, as9888_sim_count_get,
+			 as9888_sim_count_write, "%llu\n");
 
 static int as9888_sim_regs_show(struct seq_file *sf, void *unused)
 {
@@ -1153,6 +1391,13 @@ static int __init as9888_sim_init(void)
 		software_node_unregister(&as9888_sim_gpio_node);
 		goto err_free;
 	}
+	ret = software_node_register(&as9888_sim_bad_node);
+	if (ret) {
+		software_node_unregister(&as9888_sim_dev_node);
+		software_node_unregister(&as9888_sim_gpio_node);
+		goto err_free;
+	}
+	init_irq_work(&s->lvl_work, as9888_sim_lvl_work);
 
 	step = "platform device";
 	s->pdev = platform_device_register_simple("as9888-sim", -1, NULL, 0);
@@ -1166,6 +1411,13 @@ static int __init as9888_sim_init(void)
 					  AS9888_SIM_NLINES);
 	if (IS_ERR(s->domain)) {
 		ret = PTR_ERR(s->domain);
+		goto err_pdev;
+	}
+	step = "level interrupt controller";
+	s->lvl_domain = irq_domain_create_linear(NULL, 1, &as9888_sim_lvl_ops, s);
+	if (!s->lvl_domain) {
+		irq_domain_remove_sim(s->domain);
+		ret = -ENOMEM;
 		goto err_pdev;
 	}
 
@@ -1226,6 +1478,11 @@ static int __init as9888_sim_init(void)
 	debugfs_create_file("stats", 0600, s->dir, s, &as9888_sim_stats_fops);
 	debugfs_create_file("bus", 0400, s->dir, s, &as9888_sim_bus_fops);
 	debugfs_create_file("regs", 0400, s->dir, s, &as9888_sim_regs_fops);
+	debugfs_create_file("wiring", 0600, s->dir, s, &as9888_sim_wiring_fops);
+	debugfs_create_file_unsafe("drop_int1", 0600, s->dir, &s->drop_int1,
+				   &as9888_sim_count_fops);
+	debugfs_create_file_unsafe("fail_next", 0600, s->dir, &s->fail_next,
+				   &as9888_sim_count_fops);
 	for (i = 0; i < AS9888_SIM_NKNOBS; i++) {
 		s->knobs[i].s = s;
 		s->knobs[i].id = i;
@@ -1261,9 +1518,11 @@ err_domain:
 	hrtimer_cancel(&s->timer);
 	as9888_sim_dispose_irqs(s);
 	irq_domain_remove_sim(s->domain);
+	irq_domain_remove(s->lvl_domain);
 err_pdev:
 	platform_device_unregister(s->pdev);
 err_node:
+	software_node_unregister(&as9888_sim_bad_node);
 	software_node_unregister(&as9888_sim_dev_node);
 	software_node_unregister(&as9888_sim_gpio_node);
 err_free:
@@ -1295,7 +1554,12 @@ static void __exit as9888_sim_exit(void)
 	hrtimer_cancel(&s->timer);
 	as9888_sim_dispose_irqs(s);
 	irq_domain_remove_sim(s->domain);
+	irq_work_sync(&s->lvl_work);
+	if (irq_find_mapping(s->lvl_domain, 0))
+		irq_dispose_mapping(irq_find_mapping(s->lvl_domain, 0));
+	irq_domain_remove(s->lvl_domain);
 	platform_device_unregister(s->pdev);
+	software_node_unregister(&as9888_sim_bad_node);
 	software_node_unregister(&as9888_sim_dev_node);
 	software_node_unregister(&as9888_sim_gpio_node);
 	kfree(s->unit_text);

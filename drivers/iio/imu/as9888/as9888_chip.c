@@ -200,7 +200,8 @@ int as9888_power_down(struct as9888_chip *chip)
  *
  * A mode is entered from power-down only, and not before t_PD has passed:
  * a write that breaks this rule is ignored by the chip, so wait for it.
- * The accepted MS write also deasserts INT1, so INT1ST never needs reading.
+ * The accepted MS write also deasserts the data-ready pin, so with an
+ * edge-triggered interrupt INTxST never needs reading.
  *
  * Return: 0 or a negative error number.
  */
@@ -223,7 +224,10 @@ int as9888_start(struct as9888_chip *chip, u8 mode, bool men)
 		reinit_completion(&chip->drdy);
 
 	as9888_wait_pd(chip);
-	ret = regmap_write(chip->regmap, AS9888_REG_MS, mode);
+	scoped_guard(mutex, &chip->int_lock) {
+		ret = regmap_write(chip->regmap, AS9888_REG_MS, mode);
+		WRITE_ONCE(chip->meas_seq, chip->meas_seq + 1);
+	}
 	chip->last_start = ktime_get();
 
 	return ret;
@@ -352,13 +356,13 @@ int as9888_check_magn(const struct as9888_raw_sample *s)
  * @s: the sample
  * @ts: timestamp of the sample
  *
- * While the data-ready trigger runs for a buffer, wait for the gap between
- * two of its samples first. Then one MS write and one burst read of
- * ST1..ST2 on the bus (plus ST1 polls in the unusual case that the sample
- * is late without INT1). On any error the measurement is aborted, leaving
- * the chip in power-down.
+ * During system sleep nothing is measured. While the data-ready trigger
+ * runs for a buffer, wait for the gap between two of its samples first.
+ * Then one MS write and one burst read of ST1..ST2 on the bus (plus ST1
+ * polls in the unusual case that the sample is late without INT1). On any
+ * error the measurement is aborted, leaving the chip in power-down.
  *
- * Return: 0 or a negative error number.
+ * Return: 0, -EBUSY during system sleep, or a negative error number.
  */
 int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 		   u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts)
@@ -368,6 +372,10 @@ int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 	int ret;
 
 	lockdep_assert_held(&chip->lock);
+
+	/* System sleep: the supplies are, or are about to be, off */
+	if (chip->suspended)
+		return -EBUSY;
 
 	ret = as9888_wait_gap(chip);
 	if (ret)
@@ -565,6 +573,12 @@ int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
 
 /* Power, reset and the factory trim: step 1 of the application note */
 
+/*
+ * Supplies on, then RSTN released: RSTN is held low while the supplies are
+ * off (as9888_power_cut()), so every power-up is also a reset pulse of at
+ * least t_RSTL. The chip answers t_BOOT after RSTN rises (or after
+ * power-on, without a reset GPIO), in power-down.
+ */
 static int as9888_power_on(struct as9888_chip *chip)
 {
 	int ret;
@@ -572,6 +586,11 @@ static int as9888_power_on(struct as9888_chip *chip)
 	ret = regulator_bulk_enable(ARRAY_SIZE(chip->supplies), chip->supplies);
 	if (ret)
 		return ret;
+
+	if (chip->reset) {
+		fsleep(AS9888_RSTL_US);
+		gpiod_set_value_cansleep(chip->reset, 0);
+	}
 
 	/* The chip NAKs (I2C) or reads 0xff (SPI) until it has booted */
 	fsleep(AS9888_T_BOOT_US);
@@ -581,6 +600,31 @@ static int as9888_power_on(struct as9888_chip *chip)
 	return 0;
 }
 
+/*
+ * RSTN low, then the supplies off: a logic-high RSTN would feed the
+ * unpowered chip through its input protection (as ak8975_power_off()).
+ * When the supplies cannot be switched off, RSTN is released again: the
+ * chip then needs a register restore (its registers are at their reset
+ * values after the pulse).
+ */
+static int as9888_power_cut(struct as9888_chip *chip)
+{
+	int ret;
+
+	gpiod_set_value_cansleep(chip->reset, 1);
+
+	ret = regulator_bulk_disable(ARRAY_SIZE(chip->supplies),
+				     chip->supplies);
+	if (ret && chip->reset) {
+		fsleep(AS9888_RSTL_US);
+		gpiod_set_value_cansleep(chip->reset, 0);
+		fsleep(AS9888_T_BOOT_US);
+		chip->pd_since = ktime_get();
+	}
+
+	return ret;
+}
+
 static void as9888_power_off(void *arg)
 {
 	struct as9888_chip *chip = arg;
@@ -588,15 +632,25 @@ static void as9888_power_off(void *arg)
 	if (pm_runtime_status_suspended(chip->dev))
 		return;
 
-	regulator_bulk_disable(ARRAY_SIZE(chip->supplies), chip->supplies);
+	as9888_power_cut(chip);
 	pm_runtime_set_suspended(chip->dev);
 }
 
+/*
+ * RSTN is taken asserted before the supplies are switched on, and released
+ * by as9888_power_on(): probe starts with a reset pulse, whatever state the
+ * chip was left in.
+ */
 static int as9888_power_init(struct as9888_chip *chip)
 {
 	struct device *dev = chip->dev;
 	unsigned int i;
 	int ret;
+
+	chip->reset = devm_gpiod_get_optional(dev, "reset", GPIOD_OUT_HIGH);
+	if (IS_ERR(chip->reset))
+		return dev_err_probe(dev, PTR_ERR(chip->reset),
+				     "cannot get reset GPIO\n");
 
 	for (i = 0; i < ARRAY_SIZE(chip->supplies); i++)
 		chip->supplies[i].supply = as9888_supply_names[i];
@@ -613,32 +667,11 @@ static int as9888_power_init(struct as9888_chip *chip)
 	/* Runtime PM status tells as9888_power_off() whether power is on */
 	ret = pm_runtime_set_active(dev);
 	if (ret) {
-		regulator_bulk_disable(ARRAY_SIZE(chip->supplies),
-				       chip->supplies);
+		as9888_power_cut(chip);
 		return dev_err_probe(dev, ret, "cannot set runtime PM status\n");
 	}
 
 	return devm_add_action_or_reset(dev, as9888_power_off, chip);
-}
-
-static int as9888_reset(struct as9888_chip *chip)
-{
-	struct gpio_desc *reset;
-
-	/* Asserted (RSTN low) when requested */
-	reset = devm_gpiod_get_optional(chip->dev, "reset", GPIOD_OUT_HIGH);
-	if (IS_ERR(reset))
-		return dev_err_probe(chip->dev, PTR_ERR(reset),
-				     "cannot get reset GPIO\n");
-	if (!reset)
-		return 0;
-
-	fsleep(AS9888_RSTL_US);
-	gpiod_set_value_cansleep(reset, 0);
-	fsleep(AS9888_T_BOOT_US);
-	chip->pd_since = ktime_get();
-
-	return 0;
 }
 
 /* Steps 1-5..1-29: the whole EEPROM in one burst in EEPROM access mode */
@@ -724,10 +757,6 @@ static int as9888_chip_init(struct as9888_chip *chip)
 	unsigned int wia;
 	int ret;
 
-	ret = as9888_reset(chip);
-	if (ret)
-		return ret;
-
 	ret = regmap_read(chip->regmap, AS9888_REG_WIA, &wia);
 	if (ret)
 		return dev_err_probe(chip->dev, ret, "cannot read WIA\n");
@@ -797,24 +826,50 @@ static int as9888_nvmem_register(struct as9888_chip *chip)
 	return 0;
 }
 
-/*
- * INT1 is the data-ready interrupt. With interrupt names it must be the
- * one named "INT1" (INT2 is not used); without names the first interrupt
- * is taken to be INT1. No interrupt: ST1 is polled.
- */
-static int as9888_get_irq(struct device *dev, int bus_irq)
-{
-	struct fwnode_handle *fwnode = dev_fwnode(dev);
-	int irq;
+static const struct as9888_int_pin as9888_int_pins[] = {
+	{ "INT1", AS9888_REG_INT1EN, AS9888_REG_INT1ST },
+	{ "INT2", AS9888_REG_INT2EN, AS9888_REG_INT2ST },
+};
 
+/*
+ * The data-ready interrupt. Without interrupt-names, the device's (first)
+ * interrupt is INT1, and no interrupt means ST1 is polled. With
+ * interrupt-names, INT1 is taken when it is named, else INT2 (a board that
+ * wires INT2 only, as bmi323 does); a named interrupt that cannot be got
+ * is a firmware error that fails probe, never a silent fall back to
+ * polling.
+ */
+static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
+{
+	struct device *dev = chip->dev;
+	struct fwnode_handle *fwnode = dev_fwnode(dev);
+	const struct as9888_int_pin *pin;
+	unsigned int i;
+	int index, irq;
+
+	chip->int_pin = &as9888_int_pins[0];
 	if (!fwnode || !fwnode_property_present(fwnode, "interrupt-names"))
 		return bus_irq > 0 ? bus_irq : 0;
 
-	irq = fwnode_irq_get_byname(fwnode, "INT1");
-	if (irq == -EPROBE_DEFER)
-		return irq;
+	for (i = 0; i < ARRAY_SIZE(as9888_int_pins); i++) {
+		pin = &as9888_int_pins[i];
+		index = fwnode_property_match_string(fwnode, "interrupt-names",
+						     pin->name);
+		if (index < 0)
+			continue;
 
-	return irq > 0 ? irq : 0;
+		irq = fwnode_irq_get(fwnode, index);
+		if (irq < 0)
+			return dev_err_probe(dev, irq,
+					     "cannot get interrupt %s (interrupt-names entry %d)\n",
+					     pin->name, index);
+
+		chip->int_pin = pin;
+		return irq;
+	}
+
+	return dev_err_probe(dev, -EINVAL,
+			     "interrupt-names names neither INT1 nor INT2\n");
 }
 
 /* Both IIO devices appear only when the whole chip is set up */
@@ -856,6 +911,10 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 	if (ret)
 		return ret;
 
+	ret = devm_mutex_init(dev, &chip->int_lock);
+	if (ret)
+		return ret;
+
 	ret = iio_read_mount_matrix(dev, &chip->orientation);
 	if (ret)
 		return dev_err_probe(dev, ret, "cannot read mount matrix\n");
@@ -868,10 +927,10 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 	if (ret)
 		return ret;
 
-	irq = as9888_get_irq(dev, irq);
+	irq = as9888_get_irq(chip, irq);
 	if (irq < 0)
-		return dev_err_probe(dev, irq, "cannot get INT1\n");
-	/* Known before the channels are: sampling_frequency needs INT1 */
+		return irq;
+	/* Known before the channels are: sampling_frequency needs it */
 	chip->irq = irq;
 
 	chip->iio[AS9888_ACCEL] = as9888_accel_alloc(chip);
@@ -883,7 +942,7 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 		return PTR_ERR(chip->iio[AS9888_MAGN]);
 
 	if (irq) {
-		ret = as9888_trigger_setup(chip, irq);
+		ret = as9888_trigger_setup(chip);
 		if (ret)
 			return ret;
 	}
@@ -904,25 +963,36 @@ EXPORT_SYMBOL_NS_GPL(as9888_core_probe, "IIO_AS9888");
 
 /* Power management */
 
+/*
+ * Under the chip's lock, so that no register access sequence is cut in the
+ * middle: after this, the registers are served from the cache (the trim,
+ * the DAC and the interrupt set-up, rewritten on resume) and every other
+ * access fails without reaching the bus.
+ */
 static int as9888_runtime_suspend(struct device *dev)
 {
 	struct as9888_chip *chip = dev_get_drvdata(dev);
 	int ret;
 
+	guard(mutex)(&chip->lock);
+
 	regcache_cache_only(chip->regmap, true);
 	regcache_mark_dirty(chip->regmap);
 
-	ret = regulator_bulk_disable(ARRAY_SIZE(chip->supplies),
-				     chip->supplies);
-	if (ret)
+	ret = as9888_power_cut(chip);
+	if (ret) {
 		regcache_cache_only(chip->regmap, false);
+		/* RSTN was pulsed: the chip lost its registers */
+		regcache_sync(chip->regmap);
+	}
 
 	return ret;
 }
 
 /*
- * Power returns, so the chip has lost its trim, DAC and interrupt setup:
- * after t_BOOT, rewrite them from the register cache, in power-down.
+ * Power returns (with a reset pulse, see as9888_power_on()), so the chip
+ * has lost its trim, DAC and interrupt setup: after t_BOOT, rewrite them
+ * from the register cache, in power-down.
  */
 static int as9888_runtime_resume(struct device *dev)
 {
@@ -940,21 +1010,36 @@ static int as9888_runtime_resume(struct device *dev)
 	ret = regcache_sync(chip->regmap);
 	if (ret) {
 		regcache_cache_only(chip->regmap, true);
-		regulator_bulk_disable(ARRAY_SIZE(chip->supplies),
-				       chip->supplies);
+		as9888_power_cut(chip);
 	}
 
 	return ret;
 }
 
-/* A running data-ready trigger is stopped over system sleep */
+/*
+ * System sleep: as9888_trig_suspend() stops a running data-ready trigger
+ * and makes every measurement fail with -EBUSY until resume, so a buffer
+ * on another trigger (whose handler may still run until the interrupts
+ * are suspended) touches no register; INT1 is disabled, which also waits
+ * for a handler in flight; then the supplies go off.
+ */
 static int as9888_suspend(struct device *dev)
 {
 	struct as9888_chip *chip = dev_get_drvdata(dev);
+	int ret;
 
 	as9888_trig_suspend(chip);
+	if (chip->irq)
+		disable_irq(chip->irq);
 
-	return pm_runtime_force_suspend(dev);
+	ret = pm_runtime_force_suspend(dev);
+	if (ret) {
+		if (chip->irq)
+			enable_irq(chip->irq);
+		as9888_trig_resume(chip);
+	}
+
+	return ret;
 }
 
 static int as9888_resume(struct device *dev)
@@ -963,6 +1048,8 @@ static int as9888_resume(struct device *dev)
 	int ret;
 
 	ret = pm_runtime_force_resume(dev);
+	if (chip->irq)
+		enable_irq(chip->irq);
 	if (ret)
 		return ret;
 

@@ -20,12 +20,14 @@
 #include <linux/stddef.h>
 #include <linux/types.h>
 #include <linux/wait.h>
+#include <linux/workqueue.h>
 
 #include <linux/iio/iio.h>
 
 #include "as9888.h"
 #include "as9888_calib.h"
 
+struct gpio_desc;
 struct iio_trigger;
 
 #define AS9888_MAX_REG			AS9888_REG_EEPROM_END
@@ -64,6 +66,18 @@ static_assert(offsetof(struct as9888_raw_sample, accel) ==
 static_assert(offsetof(struct as9888_raw_sample, st2) ==
 	      AS9888_REG_ST2 - AS9888_REG_ST1);
 
+/**
+ * struct as9888_int_pin - a data-ready output of the chip
+ * @name:	its name in interrupt-names
+ * @en_reg:	INTxEN, bit DRxEN drives the pin on data ready
+ * @st_reg:	INTxST, reading it deasserts the pin
+ */
+struct as9888_int_pin {
+	const char *name;
+	unsigned int en_reg;
+	unsigned int st_reg;
+};
+
 /* Sensors of the chip, each an IIO device of its own */
 enum as9888_sensor_id {
 	AS9888_ACCEL,
@@ -79,10 +93,26 @@ enum as9888_sensor_id {
  * @iio:	the accelerometer and the magnetometer IIO devices
  * @trig:	data-ready trigger, NULL when INT1 is not wired
  * @supplies:	vdd and vid
+ * @reset:	RSTN, or NULL; asserted (low) whenever the supplies are off, so
+ *		that the pin never feeds a chip without power
  * @orientation: mount matrix from firmware
  * @ee:		the decoded factory EEPROM, read once at probe
- * @irq:	INT1, or 0 to poll ST1
+ * @irq:	the data-ready interrupt (INT1, or INT2 when only INT2 is
+ *		wired), or 0 to poll ST1
+ * @int_pin:	the pin @irq is wired to
+ * @int_lock:	makes the start of a measurement (its MS write, which
+ *		deasserts the pin, and @meas_seq) atomic with respect to the
+ *		deassertion of a level-triggered pin by reading INTxST; taken
+ *		inside @lock, and alone by the interrupt thread
+ * @meas_seq:	measurements started, under @int_lock
+ * @irq_seq:	@meas_seq when the interrupt last fired
  * @drdy:	completed by INT1 for measurements waited for synchronously
+ * @trig_wd:	the data-ready trigger's watchdog: armed with each sample it
+ *		starts, it restarts a sample whose INT1 edge never came and
+ *		retries a start that failed, so that the trigger never stalls
+ * @trig_fired:	INT1 fired for the data-ready trigger's sample in flight;
+ *		cleared under @lock before a sample starts, set locklessly
+ *		by the INT1 handler
  * @stop_wq:	wakes the data-ready trigger's wait for its next sampling
  *		period when the trigger stops
  * @gap_wq:	wakes whoever waits for the gap between two samples of the
@@ -114,6 +144,10 @@ enum as9888_sensor_id {
  * @trig_gen:	counts the starts of the data-ready trigger
  * @trig_users:	sensors whose buffer runs on the data-ready trigger
  * @trig_resume: the data-ready trigger ran when the system suspended
+ * @trig_retry:	the data-ready trigger could not start its next sample: the
+ *		watchdog tries again
+ * @suspended:	the system is suspending or asleep: no measurement starts
+ *		(a buffer on another trigger gets no samples until resume)
  * @trig_unread: the data-ready trigger's sample in flight is not read yet
  * @trig_sample: the sample of the data-ready trigger's last INT1 edge,
  *		read once for both devices
@@ -129,10 +163,17 @@ struct as9888_chip {
 	struct iio_dev *iio[AS9888_SENSORS];
 	struct iio_trigger *trig;
 	struct regulator_bulk_data supplies[AS9888_SUPPLIES];
+	struct gpio_desc *reset;
 	struct iio_mount_matrix orientation;
 	struct as9888_eeprom ee;
 	int irq;
+	const struct as9888_int_pin *int_pin;
+	struct mutex int_lock;	/* see @int_lock above */
+	unsigned long meas_seq;
+	unsigned long irq_seq;
 	struct completion drdy;
+	struct delayed_work trig_wd;
+	bool trig_fired;
 	wait_queue_head_t stop_wq;
 	wait_queue_head_t gap_wq;
 	ktime_t drdy_time;
@@ -149,6 +190,8 @@ struct as9888_chip {
 	unsigned int trig_gen;
 	unsigned long trig_users;
 	bool trig_resume;
+	bool trig_retry;
+	bool suspended;
 	bool trig_unread;
 	struct as9888_raw_sample trig_sample;
 	int trig_err;
@@ -211,7 +254,7 @@ void as9888_magn_debugfs_init(struct iio_dev *indio_dev);
 
 /* The data-ready trigger and the buffers, as9888_trigger.c */
 extern const struct iio_buffer_setup_ops as9888_buffer_ops;
-int as9888_trigger_setup(struct as9888_chip *chip, int irq);
+int as9888_trigger_setup(struct as9888_chip *chip);
 bool as9888_on_drdy_trigger(struct iio_dev *indio_dev);
 /* These two run with chip->lock held */
 int as9888_wait_gap(struct as9888_chip *chip);

@@ -34,6 +34,7 @@
 #include <linux/regmap.h>
 #include <linux/time64.h>
 #include <linux/wait.h>
+#include <linux/workqueue.h>
 
 #include <linux/iio/buffer.h>
 #include <linux/iio/iio.h>
@@ -43,6 +44,12 @@
 
 /* Attempts to start the next measurement of the data-ready trigger */
 #define AS9888_START_RETRIES		3
+/*
+ * The data-ready trigger's watchdog: an INT1 edge that has not come this
+ * long after its sample started (a sample takes t_MAG = 7.3 ms at most) is
+ * taken as lost, and a start that failed is tried again after as long
+ */
+#define AS9888_TRIG_WD_MS		1000
 /*
  * How long a synchronous measurement waits for the data-ready trigger's
  * next gap between two samples, beyond two sampling periods
@@ -128,15 +135,92 @@ static int as9888_trig_measure(struct as9888_chip *chip)
 
 	lockdep_assert_held(&chip->lock);
 
-	/* Before the MS write: INT1 must find it set */
+	/* Before the MS write: INT1 must find them set */
+	WRITE_ONCE(chip->trig_fired, false);
 	WRITE_ONCE(chip->trig_busy, true);
 	chip->trig_unread = true;
 	ret = as9888_start(chip, AS9888_MS_SINGLE,
 			   chip->trig_users & BIT(AS9888_MAGN));
-	if (ret)
+	if (ret) {
 		as9888_trig_gap(chip);
+		return ret;
+	}
 
-	return ret;
+	mod_delayed_work(system_power_efficient_wq, &chip->trig_wd,
+			 msecs_to_jiffies(AS9888_TRIG_WD_MS));
+
+	return 0;
+}
+
+/*
+ * Start the next sample of the running trigger, trying a few times; when
+ * every attempt fails the watchdog tries again later, so the buffer gets
+ * samples again once the bus recovers. With chip->lock held.
+ */
+static void as9888_trig_next(struct as9888_chip *chip)
+{
+	int i, ret = 0;
+
+	lockdep_assert_held(&chip->lock);
+
+	chip->trig_retry = false;
+	for (i = 0; i < AS9888_START_RETRIES && chip->trig_running; i++) {
+		ret = as9888_trig_measure(chip);
+		if (!ret)
+			return;
+	}
+	if (!chip->trig_running)
+		return;
+
+	dev_err_ratelimited(chip->dev,
+			    "data-ready trigger cannot start a sample (%d), retrying in %u ms\n",
+			    ret, AS9888_TRIG_WD_MS);
+	chip->trig_retry = true;
+	mod_delayed_work(system_power_efficient_wq, &chip->trig_wd,
+			 msecs_to_jiffies(AS9888_TRIG_WD_MS));
+}
+
+/*
+ * The watchdog of the data-ready trigger. A sample whose INT1 edge never
+ * came (a glitch on the line, an edge lost by the interrupt controller)
+ * would leave the trigger waiting for good, the buffer enabled and empty:
+ * abort it and start the next one. A start that failed is tried again.
+ */
+static void as9888_trig_watchdog(struct work_struct *work)
+{
+	struct as9888_chip *chip = container_of(to_delayed_work(work),
+						struct as9888_chip, trig_wd);
+	s64 left_ms;
+
+	guard(mutex)(&chip->lock);
+
+	if (!chip->trig_running)
+		return;
+
+	if (chip->trig_busy) {
+		/* The edge came: the handlers have the sample */
+		if (READ_ONCE(chip->trig_fired))
+			return;
+		/* A sample started after the timer was due re-armed it */
+		left_ms = AS9888_TRIG_WD_MS -
+			  ktime_ms_delta(ktime_get(), chip->last_start);
+		if (left_ms > 0) {
+			mod_delayed_work(system_power_efficient_wq,
+					 &chip->trig_wd, msecs_to_jiffies(left_ms));
+			return;
+		}
+		dev_warn_ratelimited(chip->dev,
+				     "data-ready trigger: no INT1 edge %u ms after a sample started, restarting\n",
+				     AS9888_TRIG_WD_MS);
+		as9888_power_down(chip);
+		as9888_trig_gap(chip);
+	} else if (!chip->trig_retry) {
+		/* Between two samples: the next one is on its way */
+		return;
+	}
+
+	as9888_trig_next(chip);
+	chip->trig_slot = chip->last_start;
 }
 
 static int as9888_trig_start(struct as9888_chip *chip)
@@ -162,6 +246,7 @@ static int as9888_trig_stop(struct as9888_chip *chip)
 	lockdep_assert_held(&chip->lock);
 
 	WRITE_ONCE(chip->trig_running, false);
+	chip->trig_retry = false;
 	wake_up(&chip->stop_wq);
 
 	/* Abort a measurement in flight; a handler still to run finds none */
@@ -215,7 +300,6 @@ static void as9888_trig_reenable(struct iio_trigger *trig)
 	ktime_t next, now;
 	u64 period;
 	s64 wait_ns;
-	int i, ret = 0;
 
 	scoped_guard(mutex, &chip->lock) {
 		if (!chip->trig_running)
@@ -241,15 +325,8 @@ static void as9888_trig_reenable(struct iio_trigger *trig)
 	wait_event(chip->gap_wq, !READ_ONCE(chip->gap_waiters));
 
 	guard(mutex)(&chip->lock);
-	if (chip->trig_gen != gen)
-		return;
-	for (i = 0; i < AS9888_START_RETRIES && chip->trig_running; i++) {
-		ret = as9888_trig_measure(chip);
-		if (!ret)
-			return;
-	}
-	if (ret)
-		dev_err(chip->dev, "data-ready trigger stopped: %d\n", ret);
+	if (chip->trig_gen == gen)
+		as9888_trig_next(chip);
 }
 
 static const struct iio_trigger_ops as9888_trigger_ops = {
@@ -327,21 +404,30 @@ const struct iio_buffer_setup_ops as9888_buffer_ops = {
 	.postdisable = as9888_buffer_postdisable,
 };
 
-/* System sleep: a running data-ready trigger is stopped over it */
-
+/*
+ * System sleep: a running data-ready trigger is stopped over it, and no
+ * measurement starts until resume (chip->suspended). Once the lock is
+ * dropped here, no handler is in a register access sequence and none will
+ * start one; the watchdog has nothing to restart.
+ */
 void as9888_trig_suspend(struct as9888_chip *chip)
 {
-	guard(mutex)(&chip->lock);
+	scoped_guard(mutex, &chip->lock) {
+		chip->suspended = true;
+		chip->trig_resume = chip->trig_running;
+		if (chip->trig_resume)
+			as9888_trig_stop(chip);
+	}
 
-	chip->trig_resume = chip->trig_running;
-	if (chip->trig_resume)
-		as9888_trig_stop(chip);
+	if (chip->trig)
+		cancel_delayed_work_sync(&chip->trig_wd);
 }
 
 int as9888_trig_resume(struct as9888_chip *chip)
 {
 	guard(mutex)(&chip->lock);
 
+	chip->suspended = false;
 	if (!chip->trig_resume)
 		return 0;
 
@@ -351,9 +437,10 @@ int as9888_trig_resume(struct as9888_chip *chip)
 }
 
 /*
- * INT1: a sample of the data-ready trigger fires the trigger; any other
- * measurement is waited for synchronously, with a timestamp for each
- * device (each may use its own clock).
+ * The data-ready interrupt (INT1, or INT2): a sample of the data-ready
+ * trigger fires the trigger; any other measurement is waited for
+ * synchronously, with a timestamp for each device (each may use its own
+ * clock).
  */
 static irqreturn_t as9888_drdy_irq(int irq, void *private)
 {
@@ -361,8 +448,10 @@ static irqreturn_t as9888_drdy_irq(int irq, void *private)
 	enum as9888_sensor_id id;
 
 	chip->drdy_time = ktime_get();
+	chip->irq_seq = READ_ONCE(chip->meas_seq);
 
 	if (READ_ONCE(chip->trig_busy)) {
+		WRITE_ONCE(chip->trig_fired, true);
 		iio_trigger_poll(chip->trig);
 		return IRQ_HANDLED;
 	}
@@ -374,31 +463,82 @@ static irqreturn_t as9888_drdy_irq(int irq, void *private)
 	return IRQ_HANDLED;
 }
 
+/* Level-triggered: the same, then the thread deasserts the pin */
+static irqreturn_t as9888_drdy_irq_level(int irq, void *private)
+{
+	as9888_drdy_irq(irq, private);
+
+	return IRQ_WAKE_THREAD;
+}
+
+/*
+ * The interrupt stays masked (IRQF_ONESHOT) until this returns: deassert
+ * the pin by reading INTxST, unless a measurement started since the
+ * interrupt fired: its MS write deasserted the pin, and reading INTxST now
+ * could clear the data ready of that new measurement.
+ */
+static irqreturn_t as9888_drdy_thread(int irq, void *private)
+{
+	struct as9888_chip *chip = private;
+	unsigned int st;
+
+	guard(mutex)(&chip->int_lock);
+
+	if (chip->meas_seq == chip->irq_seq)
+		regmap_read(chip->regmap, chip->int_pin->st_reg, &st);
+
+	return IRQ_HANDLED;
+}
+
+/* Removal: the trigger is stopped, its watchdog may still be pending */
+static void as9888_trig_wd_cancel(void *arg)
+{
+	struct as9888_chip *chip = arg;
+
+	cancel_delayed_work_sync(&chip->trig_wd);
+}
+
 /**
- * as9888_trigger_setup() - INT1 and the data-ready trigger
- * @chip: chip state, with both IIO devices allocated
- * @irq: INT1
+ * as9888_trigger_setup() - the data-ready interrupt and trigger
+ * @chip: chip state, with both IIO devices allocated, chip->irq and
+ *	  chip->int_pin set
  *
- * The trigger is named after the accelerometer device, "as9888-dev<N>",
- * and is the default trigger of both devices.
+ * The pin rises at the end of a measurement and falls on the next accepted
+ * MS write or when INTxST is read: a rising edge (the default) or a high
+ * level. The trigger is named after the accelerometer device,
+ * "as9888-dev<N>", and is the default trigger of both devices.
  *
  * Return: 0 or a negative error number.
  */
-int as9888_trigger_setup(struct as9888_chip *chip, int irq)
+int as9888_trigger_setup(struct as9888_chip *chip)
 {
+	const struct as9888_int_pin *pin = chip->int_pin;
 	struct device *dev = chip->dev;
+	irq_handler_t handler, thread;
 	enum as9888_sensor_id id;
+	unsigned long flags;
 	u32 irq_type;
 	int ret;
 
-	/* INT1 rises at the end of a measurement, falls on the next MS write */
-	irq_type = irq_get_trigger_type(irq);
+	irq_type = irq_get_trigger_type(chip->irq);
 	if (irq_type == IRQF_TRIGGER_NONE)
 		irq_type = IRQF_TRIGGER_RISING;
-	if (irq_type != IRQF_TRIGGER_RISING)
+	switch (irq_type) {
+	case IRQF_TRIGGER_RISING:
+		handler = as9888_drdy_irq;
+		thread = NULL;
+		flags = irq_type;
+		break;
+	case IRQF_TRIGGER_HIGH:
+		handler = as9888_drdy_irq_level;
+		thread = as9888_drdy_thread;
+		flags = irq_type | IRQF_ONESHOT;
+		break;
+	default:
 		return dev_err_probe(dev, -EINVAL,
-				     "INT1 must be rising edge, not 0x%x\n",
-				     irq_type);
+				     "%s must be rising edge or level high, not 0x%x\n",
+				     pin->name, irq_type);
+	}
 
 	chip->trig = devm_iio_trigger_alloc(dev, "as9888-dev%d",
 					    iio_device_id(chip->iio[AS9888_ACCEL]));
@@ -408,10 +548,15 @@ int as9888_trigger_setup(struct as9888_chip *chip, int irq)
 	chip->trig->ops = &as9888_trigger_ops;
 	iio_trigger_set_drvdata(chip->trig, chip);
 
-	ret = devm_request_irq(dev, irq, as9888_drdy_irq, irq_type,
-			       dev_name(dev), chip);
+	INIT_DELAYED_WORK(&chip->trig_wd, as9888_trig_watchdog);
+	ret = devm_add_action_or_reset(dev, as9888_trig_wd_cancel, chip);
 	if (ret)
-		return dev_err_probe(dev, ret, "cannot request INT1\n");
+		return ret;
+
+	ret = devm_request_threaded_irq(dev, chip->irq, handler, thread, flags,
+					dev_name(dev), chip);
+	if (ret)
+		return dev_err_probe(dev, ret, "cannot request %s\n", pin->name);
 
 	ret = devm_iio_trigger_register(dev, chip->trig);
 	if (ret)
@@ -420,10 +565,10 @@ int as9888_trigger_setup(struct as9888_chip *chip, int irq)
 	for (id = 0; id < AS9888_SENSORS; id++)
 		chip->iio[id]->trig = iio_trigger_get(chip->trig);
 
-	ret = regmap_write(chip->regmap, AS9888_REG_INT1EN,
+	ret = regmap_write(chip->regmap, pin->en_reg,
 			   FIELD_PREP(AS9888_INTEN_DR_MSK, 1));
 	if (ret)
-		return dev_err_probe(dev, ret, "cannot enable INT1\n");
+		return dev_err_probe(dev, ret, "cannot enable %s\n", pin->name);
 
 	return 0;
 }
