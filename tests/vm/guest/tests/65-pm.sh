@@ -3,8 +3,7 @@
 # runtime-suspends (registers back to their reset values); after resume
 # the DAC (calibbias), the trim and INT1EN are back in the chip and the
 # calibration (caliboffset, calibtemp) is unchanged.
-# System sleep is not tested: the guest has no wakeup source (no RTC, no
-# PM_DEBUG pm_test), and the s2idle tick freeze stops the adapter's timers.
+# System sleep is tested in 66-pm-wiring (pm_test=devices with freeze).
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 PM=$(readlink -f $DEV)/../power
