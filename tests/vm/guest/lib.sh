@@ -142,6 +142,11 @@ wait_dev() {
 	MDEV=/nonexistent-iio-device
 	return 1
 }
+# chip_gone: neither of the chip's IIO devices is left, nor its trigger
+chip_gone() {
+	! iio_dev > /dev/null && ! iio_dev_named $MAGN_NAME > /dev/null &&
+		! grep -q '^as9888-dev' /sys/bus/iio/devices/trigger*/name 2>/dev/null
+}
 # set_unit "key = value" ...: one line per argument; re-instantiates the chip
 set_unit() {
 	_u=""

@@ -16,26 +16,21 @@ repeat() {
 	done
 	echo $_fails
 }
-# gone: neither of the chip's IIO devices is left, nor its trigger
-gone() {
-	! iio_dev > /dev/null && ! iio_dev_named as9888-magn > /dev/null &&
-		! grep -q '^as9888-dev' /sys/bus/iio/devices/trigger*/name 2>/dev/null
-}
 # each cycle: both devices go away, and new ones come back
 unbind_bind() {
 	dev_stale
-	echo $C > $I2C_DRV/unbind && gone &&
+	echo $C > $I2C_DRV/unbind && chip_gone &&
 		echo $C > $I2C_DRV/bind && wait_dev 5
 }
 reload_i2c() {
 	dev_stale
-	rmmod as9888_i2c && gone &&
+	rmmod as9888_i2c && chip_gone &&
 		insmod $MODDIR/as9888_i2c.ko && wait_dev 5
 }
 reload_driver() {
 	dev_stale
 	rmmod as9888_i2c && rmmod as9888_core && rmmod as9888_calib &&
-		! grep -qE '^as9888_(i2c|core|calib) ' /proc/modules && gone &&
+		! grep -qE '^as9888_(i2c|core|calib) ' /proc/modules && chip_gone &&
 		load_driver && wait_dev 5
 }
 uptime_s() { cut -d' ' -f1 /proc/uptime; }
