@@ -183,8 +183,9 @@ EOF
 )"
 
 # 3: driver
-DRV_FILES=(Kconfig Makefile as9888.h as9888_regs.h as9888_calib.h
-	as9888_calib.c as9888_core.c as9888_i2c.c as9888_spi.c
+DRV_FILES=(Kconfig Makefile as9888.h as9888_core.h as9888_regs.h
+	as9888_calib.h as9888_calib.c as9888_chip.c as9888_accel.c
+	as9888_magn.c as9888_trigger.c as9888_i2c.c as9888_spi.c
 	as9888_calib_kunit.c .kunitconfig)
 for f in "${DRV_FILES[@]}"; do
 	[ -f "$REPO/$DRV_REL/$f" ] || die "missing $DRV_REL/$f"
@@ -234,11 +235,24 @@ consumers need raw and scale only. The level-test calibration is loaded
 by userspace through caliboffset/calibtemp; the offset DAC is calibbias.
 The arithmetic is integer only, in its own unit, with a KUnit suite.
 
+Each sensor is an IIO device of its own, as in inv_icm42600 and
+st_lsm6dsx: "as9888-accel" (accelerometer and temperature) and
+"as9888-magn" (magnetometer). Measuring the magnetometer makes a sample
+take 7.3 ms instead of 1.2 ms, so a client of the accelerometer alone,
+even one that enables every scan element of its device, must never make
+the chip measure it. Both devices share the chip's lock and one
+data-ready trigger: its sample is read once, each device takes its
+channels from it, and the next measurement starts, with the magnetometer
+on only while the magnetometer's buffer runs on the trigger, when both
+are done (the trigger's reenable op). A raw read, the self-test or an
+offset DAC write waits for the gap between two samples, so a client of
+one sensor neither stops nor waits for the other's buffer.
+
 The driver provides:
 - accelerometer, magnetometer (with the EEPROM sensitivity adjustment
   in the scale) and temperature channels, and mount matrices;
-- a triggered buffer with its own data-ready trigger when INT1 is wired,
-  any other trigger otherwise;
+- triggered buffers with the chip's data-ready trigger when INT1 is
+  wired, any other trigger otherwise;
 - oversampling_ratio for the accelerometer filter (1 or 4);
 - the magnetometer self-test (MS = 0x08) and its judgment;
 - the EEPROM as a read-only NVMEM device;

@@ -70,4 +70,13 @@ static inline int as9888_compat_put_autosuspend(struct device *dev)
 #define pm_runtime_put_autosuspend	as9888_compat_put_autosuspend
 #endif
 
+/* iio_for_each_active_channel() hides masklength since 6.12 */
+#ifndef iio_for_each_active_channel
+#include <linux/iio/iio.h>
+
+#define iio_for_each_active_channel(indio_dev, chan) \
+	for_each_set_bit(chan, (indio_dev)->active_scan_mask, \
+			 (indio_dev)->masklength)
+#endif
+
 #endif /* AS9888_COMPAT_H */
