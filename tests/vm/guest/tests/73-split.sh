@@ -54,8 +54,8 @@ accel_start() {
 cat $SIM/stats > $O/s0
 if buf_start $DEV "$T" $O/all.bin all; then
 	sleep 2
-	cat $SIM/stats > $O/s1
 	Z=$(scan_bytes $DEV)
+	cat $SIM/stats > $O/s1
 	buf_stop $DEV $BUF_PID $O/all.bin
 	M=$(($(sv $O/s1 chip_measurements) - $(sv $O/s0 chip_measurements)))
 	G=$(($(sv $O/s1 chip_magn_measurements) - $(sv $O/s0 chip_magn_measurements)))
