@@ -17,8 +17,9 @@
 # A kernel fails when a test fails, when the guest stalls, when the end
 # marker is missing (hang, panic) or on any kernel splat in the serial log
 # (BUG, WARNING, KASAN, lockdep, Oops, panic, kmemleak leak, hung task).
-# Prints "<k>: N passed, N failed" per kernel; exit status 0 only when all
-# pass.
+# Prints "<k>: N passed, N failed" per kernel (", N skipped" when a test
+# printed a TAP "# SKIP": not counted as passed); exit status 0 only when
+# none failed.
 #
 # Everything goes to $AS9888_CACHE/vm/ (logs: $AS9888_CACHE/logs/vm-run-<k>.log).
 # One run at a time per cache (lock $AS9888_CACHE/.vm.lock: a second run
@@ -233,7 +234,7 @@ RESULTS=()
 FAILED=0
 run_one() {
 	local k="$1"
-	local log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail splat qpid
+	local log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail skip splat qpid
 	local lines=0 n quiet=0 stalled=""
 	pack_initramfs "$k"
 	t=$(now)
@@ -268,15 +269,17 @@ run_one() {
 	wait "$qpid" || rc=$?
 	trap - EXIT TERM INT
 	tr -d '\r' <"$log" >"$log.tmp" && mv "$log.tmp" "$log"
-	pass=$(grep -c '^ok ' "$log" || true)
+	# a TAP "# SKIP" is not a pass: counted apart
+	skip=$(grep -c '^ok .*# SKIP' "$log" || true)
+	pass=$(($(grep -c '^ok ' "$log" || true) - skip))
 	fail=$(grep -c '^not ok ' "$log" || true)
-	grep -E '^(not ok|# )' "$log" | grep -v '^# dmesg' | sed "s/^/[$k] /" || true
+	grep -E '^(not ok|# )|^ok .*# SKIP' "$log" | grep -v '^# dmesg' | sed "s/^/[$k] /" || true
 	# the TAP plan must match the results (nothing silently skipped)
 	local plan
 	plan=$(sed -n 's/^1\.\.\([0-9]*\)$/\1/p' "$log" | tail -n1)
-	if [ -z "$plan" ] || [ "$plan" -ne $((pass + fail)) ] || [ "$plan" -eq 0 ]; then
+	if [ -z "$plan" ] || [ "$plan" -ne $((pass + fail + skip)) ] || [ "$plan" -eq 0 ]; then
 		fail=$((fail + 1))
-		warn "$k: TAP plan '${plan:-none}' does not match $pass passed + $fail failed"
+		warn "$k: TAP plan '${plan:-none}' does not match $pass passed + $fail failed + $skip skipped"
 	fi
 	if [ -n "$stalled" ]; then
 		fail=$((fail + 1))
@@ -294,7 +297,9 @@ run_one() {
 		printf '%s\n' "$splat" | head -n 20 >&2
 	fi
 	[ "$fail" -eq 0 ] || FAILED=1
-	RESULTS+=("$k: $pass passed, $fail failed ($(since "$t") in QEMU)")
+	local skipped=""
+	[ "$skip" -eq 0 ] || skipped=", $skip skipped"
+	RESULTS+=("$k: $pass passed, $fail failed$skipped ($(since "$t") in QEMU)")
 }
 
 build_daemon

@@ -4,6 +4,7 @@
 T_N=0
 T_PASS=0
 T_FAIL=0
+T_SKIP=0
 SIM=/sys/kernel/debug/as9888_sim
 MODDIR=/lib/modules/as9888
 
@@ -18,15 +19,21 @@ nok() {
 	shift
 	[ $# -gt 0 ] && diag "$*"
 }
+# skip NAME REASON: a check that could not be made here. TAP "# SKIP": not a
+# pass (T_SKIP, and the host counts it apart), not a failure
+skip() {
+	T_N=$((T_N + 1)); T_SKIP=$((T_SKIP + 1))
+	echo "ok $T_N - $1 # SKIP $2"
+}
 # check NAME COMMAND...: ok if the command succeeds
 check() {
-	_n="$1"; shift
-	if "$@"; then ok "$_n"; else nok "$_n" "failed: $*"; fi
+	_ck_n="$1"; shift
+	if "$@"; then ok "$_ck_n"; else nok "$_ck_n" "failed: $*"; fi
 }
 # check_not NAME COMMAND...: ok if the command fails (shell functions allowed)
 check_not() {
-	_n="$1"; shift
-	if "$@"; then nok "$_n" "succeeded: $*"; else ok "$_n"; fi
+	_cn_n="$1"; shift
+	if "$@"; then nok "$_cn_n" "succeeded: $*"; else ok "$_cn_n"; fi
 }
 # eq NAME GOT WANT
 eq() {
@@ -48,30 +55,115 @@ load_sim() {
 	grep -q "^as9888_sim " /proc/modules || insmod $MODDIR/as9888_sim.ko
 }
 
-# The IIO device directory of the AS9888, or empty
-iio_dev() {
-	for d in /sys/bus/iio/devices/iio:device*; do
-		[ -f "$d/name" ] && [ "$(cat "$d/name")" = as9888 ] && { echo "$d"; return 0; }
+# --- the chip's two IIO devices -------------------------------------------------
+# The driver registers one IIO device per sensor, both children of the same
+# bus device (the i2c client or spi device): "as9888-accel" (accelerometer,
+# temperature, calibration, the chip's data-ready trigger "as9888-dev<N>",
+# N = its device number) and "as9888-magn" (magnetometer, selftest).
+ACCEL_NAME=as9888-accel
+MAGN_NAME=as9888-magn
+# iio_dev_named NAME: the first IIO device directory with that name
+iio_dev_named() {
+	for _dn_d in /sys/bus/iio/devices/iio:device*; do
+		[ "$(cat "$_dn_d/name" 2>/dev/null)" = "$1" ] && { echo "$_dn_d"; return 0; }
 	done
 	return 1
 }
-# wait_dev [SECONDS]: wait for the IIO device to appear
-wait_dev() {
-	_i=0
-	while [ $_i -lt $((${1:-5} * 10)) ]; do
-		DEV=$(iio_dev) && return 0
-		sleep 0.1; _i=$((_i + 1))
+# The accelerometer's IIO device directory of the AS9888, or empty
+iio_dev() { iio_dev_named $ACCEL_NAME; }
+# magn_of ACCEL_DIR: the magnetometer device of the same chip, the sibling
+# named as9888-magn under the same bus device, as /sys/bus/iio/devices/...
+magn_of() {
+	_mo_p=$(readlink -f "$1") || return 1
+	for _mo_d in "${_mo_p%/*}"/iio:device*; do
+		[ "$(cat "$_mo_d/name" 2>/dev/null)" = $MAGN_NAME ] &&
+			{ echo "/sys/bus/iio/devices/${_mo_d##*/}"; return 0; }
 	done
-	# a path where every read and write fails
-	DEV=/nonexistent-iio-device
 	return 1
+}
+# dev_id DIR: the identity of a device directory (its kernfs inode, which a
+# new device never shares with a removed one, unlike the device number)
+dev_id() { stat -L -c %i "$1" 2>/dev/null; }
+# dr_trig: the name of the chip's data-ready trigger, "as9888-dev<N>" with N
+# the accel device's number, if such a trigger exists
+dr_trig() {
+	_dt_t=as9888-dev${DEV##*iio:device}
+	grep -qx "$_dt_t" /sys/bus/iio/devices/trigger*/name 2>/dev/null && echo "$_dt_t"
+}
+# dev_stale: the chip's devices are about to be re-created (a new unit, an
+# unbind/bind, a module reload): remember the present accel device, so that
+# wait_dev waits for another one. set_unit and rebind call it; a test that
+# re-creates the device by other means calls it first.
+DEV_STALE=""
+dev_stale() {
+	_ds_d=$(iio_dev) && DEV_STALE=$(dev_id "$_ds_d") || DEV_STALE=""
+}
+# dev_ready ACCEL_DIR: the chip's devices are there and probed: a readable
+# name on both, the same parent, the parent bound to its driver, and (INT1
+# wired: sampling_frequency) the data-ready trigger registered
+dev_ready() {
+	_dr_m=$(magn_of "$1") || return 1
+	[ "$(cat "$_dr_m/name" 2>/dev/null)" = $MAGN_NAME ] || return 1
+	[ -e "$(readlink -f "$1")/../driver" ] || return 1
+	if [ -e "$1/sampling_frequency" ]; then
+		grep -qx "as9888-dev${1##*iio:device}" /sys/bus/iio/devices/trigger*/name 2>/dev/null ||
+			return 1
+	fi
+	return 0
+}
+# wait_dev [SECONDS]: wait (default 10 s) for the chip's devices: sets DEV
+# (accel) and MDEV (magn). After dev_stale, only a device other than the one
+# remembered counts (a re-created device may reuse the number of the old).
+# A timeout says on stderr (the console) what it waited for and what was
+# there.
+wait_dev() {
+	_wd_i=0
+	_wd_n=$((${1:-10} * 10))
+	while [ $_wd_i -lt $_wd_n ]; do
+		if _wd_a=$(iio_dev); then
+			_wd_id=$(dev_id "$_wd_a")
+			if [ -n "$_wd_id" ] && [ "$_wd_id" != "$DEV_STALE" ] && dev_ready "$_wd_a" &&
+				[ "$(dev_id "$_wd_a")" = "$_wd_id" ]; then
+				DEV=$_wd_a
+				MDEV=$(magn_of "$_wd_a")
+				DEV_STALE=""
+				return 0
+			fi
+		fi
+		sleep 0.1; _wd_i=$((_wd_i + 1))
+	done
+	_wd_have=""
+	for _wd_d in /sys/bus/iio/devices/iio:device*; do
+		[ -e "$_wd_d" ] && _wd_have="$_wd_have ${_wd_d##*/}=$(cat "$_wd_d/name" 2>/dev/null)(inode $(dev_id "$_wd_d"))"
+	done
+	echo "# wait_dev: no probed $ACCEL_NAME + $MAGN_NAME pair${DEV_STALE:+ other than the accel device of inode $DEV_STALE} within ${1:-10} s; present:${_wd_have:- none}" >&2
+	# paths where every read and write fails
+	DEV=/nonexistent-iio-device
+	MDEV=/nonexistent-iio-device
+	return 1
+}
+# chip_gone: neither of the chip's IIO devices is left, nor its trigger
+chip_gone() {
+	! iio_dev > /dev/null && ! iio_dev_named $MAGN_NAME > /dev/null &&
+		! grep -q '^as9888-dev' /sys/bus/iio/devices/trigger*/name 2>/dev/null
 }
 # set_unit "key = value" ...: one line per argument; re-instantiates the chip
 set_unit() {
 	_u=""
 	for l in "$@"; do _u="$_u$l
 "; done
+	dev_stale
 	printf '%s' "$_u" > $SIM/unit
+}
+# bus_drv: the driver directory of the bus device (i2c or spi)
+bus_drv() { readlink -f "$(readlink -f "$DEV")/../driver"; }
+# rebind: unbind and bind the chip's bus device (DEV set by wait_dev); then
+# wait_dev waits for the new devices
+rebind() {
+	_rb_b=$(bus_drv)
+	_rb_c=$(basename "$(readlink -f "$DEV/..")")
+	dev_stale
+	echo "$_rb_c" > "$_rb_b/unbind" && echo "$_rb_c" > "$_rb_b/bind"
 }
 client() { cut -d' ' -f2 $SIM/bus; }
 stat_get() { sed -n "s/^$1 //p" $SIM/stats; }
@@ -103,6 +195,66 @@ capture() {
 	# a disabled, drained buffer blocks a reader: stop it after 5 s
 	timeout 5 cat /dev/iio:device$N > "$3"
 	echo "" > $DEV/trigger/current_trigger
+}
+# se_dir DIR: the scan elements directory of an IIO device
+se_dir() { if [ -d "$1/scan_elements" ]; then echo "$1/scan_elements"; else echo "$1/buffer0"; fi; }
+# scan_bytes DIR: the size of one scan with the elements enabled now, each
+# element at an offset that is a multiple of its storage size, the scan a
+# multiple of the largest one (the IIO core's layout)
+scan_bytes() {
+	for _sb_e in "$(se_dir "$1")"/*_en; do
+		[ "$(cat "$_sb_e")" = 1 ] || continue
+		echo "$(cat "${_sb_e%_en}_index") $(cat "${_sb_e%_en}_type")"
+	done | sort -n | awk '{ split($2, a, "/"); b = int((a[2] + 0) / 8)
+			off = int((off + b - 1) / b) * b + b; if (b > m) m = b }
+		END { if (m) off = int((off + m - 1) / m) * m; print off + 0 }'
+}
+# buf_start DIR TRIGGER FILE ELEMENTS...: a buffered capture of DIR's IIO
+# device on TRIGGER with these scan elements ("accel_x", ...; "all": every
+# one the device has) into FILE, read by a background cat (BUF_PID).
+# Fails if the buffer does not start.
+buf_start() {
+	_bs_dir=$1; _bs_trg=$2; _bs_out=$3; shift 3
+	_bs_se=$(se_dir "$_bs_dir")
+	for _bs_e in "$_bs_se"/*_en; do echo 0 > "$_bs_e"; done
+	if [ "$1" = all ]; then
+		for _bs_e in "$_bs_se"/*_en; do echo 1 > "$_bs_e"; done
+	else
+		for _bs_c in "$@"; do echo 1 > "$_bs_se/in_${_bs_c}_en"; done
+	fi
+	echo "$_bs_trg" > "$_bs_dir/trigger/current_trigger"
+	echo 4096 > "$_bs_dir/buffer/length"
+	: > "$_bs_out"
+	echo 1 > "$_bs_dir/buffer/enable" || return 1
+	# (the reader's errors, e.g. ENODEV when the device goes, in FILE.err)
+	cat "/dev/iio:device${_bs_dir##*iio:device}" >> "$_bs_out" 2> "$_bs_out.err" &
+	BUF_PID=$!
+}
+# buf_drain DIR PID FILE: after the buffer was turned off, the reader
+# drains what is left (until FILE stops growing, at most 5 s), is stopped,
+# and the trigger detached
+buf_drain() {
+	_bd_i=0; _bd_s=-1
+	while [ $_bd_i -lt 50 ] && [ "$(wc -c < "$3")" != "$_bd_s" ]; do
+		_bd_s=$(wc -c < "$3"); sleep 0.2; _bd_i=$((_bd_i + 1))
+	done
+	kill "$2" 2>/dev/null
+	wait "$2" 2>/dev/null
+	echo "" > "$1/trigger/current_trigger"
+}
+# buf_stop DIR PID FILE: buffer off, then buf_drain
+buf_stop() {
+	echo 0 > "$1/buffer/enable"
+	buf_drain "$@"
+}
+# wait_grow FILE BYTES: until FILE holds BYTES more than now; 60 s without
+# that is a stall (fails)
+wait_grow() {
+	_wg_w=$(($(wc -c < "$1") + $2)); _wg_i=0
+	while [ "$(wc -c < "$1")" -lt $_wg_w ]; do
+		[ $_wg_i -ge 600 ] && return 1
+		sleep 0.1; _wg_i=$((_wg_i + 1))
+	done
 }
 # samples FILE; monotonic FILE; zbad FILE
 samples() { echo $(($(wc -c < "$1") / 16)); }

@@ -13,4 +13,4 @@ for t in /tests/tests/*.sh; do
 done
 leak_check
 echo "1..$T_N"
-echo "# AS9888-VM-RESULT passed=$T_PASS failed=$T_FAIL"
+echo "# AS9888-VM-RESULT passed=$T_PASS failed=$T_FAIL skipped=$T_SKIP"

@@ -49,5 +49,54 @@ near "posture x up: accel z = 0" "$(cat $DEV/in_accel_z_raw)" 0 3
 
 # Magnetometer: field 20 -5 -40 uT (default), raw = rint(f / 0.3 * 256 / (EHC + 128))
 # EHC = 0x80 0x85 0x7b -> 66.67, -16.33(-16), -136.1(-136)
-near "magn x raw from the ambient field" "$(cat $DEV/in_magn_x_raw)" 67 1
-near "magn z raw from the ambient field" "$(cat $DEV/in_magn_z_raw)" -136 1
+near "magn x raw from the ambient field" "$(cat $MDEV/in_magn_x_raw)" 67 1
+near "magn z raw from the ambient field" "$(cat $MDEV/in_magn_z_raw)" -136 1
+
+# One IIO device per sensor: what each has, exactly (the ABI of
+# Documentation/ABI; INT1 wired, so sampling_frequency on both)
+# attrs DIR: the channel and device attributes (in_*, sampling_*,
+# selftest), one line, sorted
+attrs() { (cd "$1" && ls -d in_* sampling_* selftest 2>/dev/null | sort | tr '\n' ' '); }
+# scan DIR: "element:index" of every scan element, by index
+scan() {
+	_se=$(se_dir "$1")
+	for _i in "$_se"/*_index; do
+		_c=${_i##*/}; echo "$(cat "$_i") ${_c%_index}"
+	done | sort -n | awk '{ printf "%s:%s ", $2, $1 }'
+}
+eq "as9888-accel: its attributes, no magnetometer, no selftest" "$(attrs $DEV)" \
+	"$(printf '%s\n' in_accel_calibtemp in_accel_mount_matrix in_accel_oversampling_ratio \
+		in_accel_oversampling_ratio_available in_accel_scale \
+		in_accel_x_calibbias in_accel_x_calibbias_available in_accel_x_caliboffset in_accel_x_raw \
+		in_accel_y_calibbias in_accel_y_calibbias_available in_accel_y_caliboffset in_accel_y_raw \
+		in_accel_z_calibbias in_accel_z_calibbias_available in_accel_z_caliboffset in_accel_z_raw \
+		in_temp_offset in_temp_raw in_temp_scale \
+		sampling_frequency sampling_frequency_available | sort | tr '\n' ' ')"
+eq "as9888-accel: scan elements accel 0-2, temp 3, timestamp 4" "$(scan $DEV)" \
+	"in_accel_x:0 in_accel_y:1 in_accel_z:2 in_temp:3 in_timestamp:4 "
+eq "as9888-magn: its attributes, selftest, no accelerometer or temperature" "$(attrs $MDEV)" \
+	"$(printf '%s\n' in_magn_mount_matrix in_magn_x_raw in_magn_x_scale in_magn_y_raw \
+		in_magn_y_scale in_magn_z_raw in_magn_z_scale sampling_frequency \
+		sampling_frequency_available selftest | sort | tr '\n' ' ')"
+eq "as9888-magn: scan elements magn 0-2, timestamp 3" "$(scan $MDEV)" \
+	"in_magn_x:0 in_magn_y:1 in_magn_z:2 in_timestamp:3 "
+eq "as9888-magn: the scan type of the magnetometer, s13 in 16 bits" \
+	"$(cat $(se_dir $MDEV)/in_magn_[xyz]_type | sort -u)" "le:s13/16>>0"
+# the chip has one rate: set on either device, both show it
+echo 50 > $MDEV/sampling_frequency
+eq "sampling_frequency set on the magn device: the accel device shows it" \
+	"$(cat $DEV/sampling_frequency)" "$(cat $MDEV/sampling_frequency)"
+echo 100 > $DEV/sampling_frequency
+eq "sampling_frequency set on the accel device: the magn device shows it" \
+	"$(cat $MDEV/sampling_frequency)" "$(cat $DEV/sampling_frequency)"
+eq "the same sampling_frequency_available on both" \
+	"$(cat $MDEV/sampling_frequency_available)" "$(cat $DEV/sampling_frequency_available)"
+# debugfs: selftest_readings moved to the magn device
+check "debugfs: selftest_readings on the magn device" \
+	test -e /sys/kernel/debug/iio/${MDEV##*/}/selftest_readings
+check_not "debugfs: no selftest_readings on the accel device" \
+	test -e /sys/kernel/debug/iio/${DEV##*/}/selftest_readings
+for d in $DEV $MDEV; do
+	check "debugfs: direct_reg_access on $(cat $d/name)" \
+		test -e /sys/kernel/debug/iio/${d##*/}/direct_reg_access
+done

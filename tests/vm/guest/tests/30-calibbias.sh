@@ -43,4 +43,4 @@ for v in abc 68 -68 1.5 "" 99999999999; do
 	fi
 done
 eq "calibbias unchanged after bad writes" "$(cat $DEV/in_accel_x_calibbias)" "$b"
-if echo 0 > $DEV/selftest 2>/dev/null; then nok "selftest '0' rejected"; else ok "selftest '0' rejected"; fi
+if echo 0 > $MDEV/selftest 2>/dev/null; then nok "selftest '0' rejected (magn device)"; else ok "selftest '0' rejected (magn device)"; fi

@@ -10,8 +10,9 @@ timed_read() {
 set_unit "fault = no_drdy"
 if wait_dev 5; then
 	eq "no_drdy: a raw read fails instead of hanging" "$(timed_read $DEV/in_accel_x_raw)" ERR
+	eq "no_drdy: a magn raw read fails instead of hanging" "$(timed_read $MDEV/in_magn_x_raw)" ERR
 	eq "no_drdy: selftest write fails" \
-		"$(timeout 10 sh -c "echo 1 > $DEV/selftest" 2>/dev/null && echo OK || echo ERR)" ERR
+		"$(timeout 10 sh -c "echo 1 > $MDEV/selftest" 2>/dev/null && echo OK || echo ERR)" ERR
 else
 	ok "no_drdy: probe refused the unit"
 fi
@@ -38,9 +39,7 @@ else
 fi
 
 set_unit "fault = eeprom_blank"
-sleep 0.5
-if iio_dev >/dev/null; then
-	DEV=$(iio_dev)
+if wait_dev 5; then
 	diag "eeprom_blank: device probed, calibbias $(timed_read $DEV/in_accel_x_calibbias)"
 	ok "eeprom_blank: probe completed (driver accepts a blank EEPROM)"
 else

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0
-# Every writable attribute of the IIO device rejects bad input and keeps
-# its value. The attributes are found by listing; one without an entry in
+# Every writable attribute of the two IIO devices (as9888-accel and
+# as9888-magn) rejects bad input and keeps its value. The attributes are found by listing; one without an entry in
 # bad_values() fails the test, so a new attribute needs its bad input here.
 #
 # Booleans are parsed by kstrtobool(), which looks at the first character
@@ -13,7 +13,7 @@ set_cal 12.5 -3.25 0.000016 30000
 echo 4 > $DEV/in_accel_oversampling_ratio
 OVF=99999999999999999999
 
-# bad_values ATTR: one bad value per line for ATTR (relative to $DEV);
+# bad_values ATTR: one bad value per line for ATTR (relative to the device);
 # status 2: the attribute has its own checks below
 bad_values() {
 	case "$1" in
@@ -59,67 +59,94 @@ bad_values() {
 	esac
 }
 
-# try ATTR: write every bad value; prints the values that were accepted
+# try DIR ATTR: write every bad value; prints the values that were accepted
 try() {
-	bad_values "$1" | while IFS= read -r v; do
-		echo "$v" > "$DEV/$1" 2>/dev/null && echo "'$v'"
+	bad_values "$2" | while IFS= read -r v; do
+		echo "$v" > "$1/$2" 2>/dev/null && echo "'$v'"
 	done
 }
+# writable DIR: the writable attributes of a device, relative to it
+writable() { (cd "$1" && find . -perm -200 -type f | sed 's|^\./||' | sort); }
 
-W=$(cd $DEV && find . -perm -200 -type f | sed 's|^\./||' | sort)
-diag "writable attributes: $(echo $W)"
-check "at least 40 writable attributes found ($(echo "$W" | wc -l))" test "$(echo "$W" | wc -l)" -ge 40
-for f in $W; do
-	bad_values "$f" > /dev/null
-	case $? in
-	0) ;;
-	2) continue ;;
-	*) nok "$f: covered by the bad-input table"; continue ;;
-	esac
-	before=$(cat "$DEV/$f" 2>&1)
-	acc=$(try "$f")
-	after=$(cat "$DEV/$f" 2>&1)
-	if [ -n "$acc" ]; then
-		nok "$f: every bad write rejected" "accepted: $(echo $acc)"
-	elif [ "$after" != "$before" ]; then
-		nok "$f: every bad write rejected, value unchanged" "'$before' became '$after'"
-	else
-		ok "$f: $(bad_values "$f" | wc -l) bad writes rejected, value unchanged"
-	fi
+WA=$(writable $DEV)
+WM=$(writable $MDEV)
+diag "writable attributes of as9888-accel: $(echo $WA)"
+diag "writable attributes of as9888-magn: $(echo $WM)"
+check "at least 40 writable attributes found on the two devices ($(echo "$WA" | wc -l) + $(echo "$WM" | wc -l))" \
+	test $(($(echo "$WA" | wc -l) + $(echo "$WM" | wc -l))) -ge 40
+check "the magn device's selftest among them" sh -c "echo '$WM' | grep -qx selftest"
+for d in $DEV $MDEV; do
+	n=$(cat $d/name)
+	for f in $(writable $d); do
+		bad_values "$f" > /dev/null
+		case $? in
+		0) ;;
+		2) continue ;;
+		*) nok "$n: $f: covered by the bad-input table"; continue ;;
+		esac
+		before=$(cat "$d/$f" 2>&1)
+		acc=$(try "$d" "$f")
+		after=$(cat "$d/$f" 2>&1)
+		if [ -n "$acc" ]; then
+			nok "$n: $f: every bad write rejected" "accepted: $(echo $acc)"
+		elif [ "$after" != "$before" ]; then
+			nok "$n: $f: every bad write rejected, value unchanged" "'$before' became '$after'"
+		else
+			ok "$n: $f: $(bad_values "$f" | wc -l) bad writes rejected, value unchanged"
+		fi
+	done
 done
 
 # current_trigger: an unknown name detaches the trigger, like "" (IIO core)
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
-echo "$T" > $DEV/trigger/current_trigger
-echo as9888-nosuch > $DEV/trigger/current_trigger
-eq "current_trigger: an unknown name leaves no trigger (IIO core)" \
-	"$(cat $DEV/trigger/current_trigger)" ""
+T=$(dr_trig)
+for d in $DEV $MDEV; do
+	echo "$T" > $d/trigger/current_trigger
+	echo as9888-nosuch > $d/trigger/current_trigger
+	eq "$(cat $d/name): current_trigger: an unknown name leaves no trigger (IIO core)" \
+		"$(cat $d/trigger/current_trigger)" ""
+done
 
-# While the buffer runs, valid writes that would change it are refused too
-SE=$DEV/scan_elements
-for f in $SE/*_en; do echo 0 > $f; done
-echo 1 > $SE/in_accel_x_en
-echo "$T" > $DEV/trigger/current_trigger
-echo 1 > $DEV/buffer/enable
-# busy ATTR VALUE: the write fails and the value stays
+# While a buffer runs, valid writes that would change it are refused too
+# busy DIR ATTR VALUE: the write fails and the value stays
 busy() {
-	_b=$(cat "$DEV/$1")
-	if echo "$2" > "$DEV/$1" 2>/dev/null; then
-		nok "buffer on: '$2' > $1 refused"
+	_b=$(cat "$1/$2")
+	if echo "$3" > "$1/$2" 2>/dev/null; then
+		nok "$(cat $1/name): buffer on: '$3' > $2 refused"
 	else
-		eq "buffer on: '$2' > $1 refused, value unchanged" "$(cat "$DEV/$1")" "$_b"
+		eq "$(cat $1/name): buffer on: '$3' > $2 refused, value unchanged" "$(cat "$1/$2")" "$_b"
 	fi
 }
-busy scan_elements/in_accel_x_en 0
-busy scan_elements/in_magn_x_en 1
-busy buffer0/in_accel_y_en 1
-busy buffer/length 64
-busy trigger/current_trigger ""
+# buffer_on DIR ELEMENT: DIR's buffer on the data-ready trigger with one
+# element; buffer_off DIR
+buffer_on() {
+	for f in $(se_dir $1)/*_en; do echo 0 > $f; done
+	echo 1 > $(se_dir $1)/in_$2_en
+	echo "$T" > $1/trigger/current_trigger
+	echo 1 > $1/buffer/enable
+}
+buffer_off() {
+	echo 0 > $1/buffer/enable
+	echo "" > $1/trigger/current_trigger
+	for f in $(se_dir $1)/*_en; do echo 0 > $f; done
+}
+buffer_on $DEV accel_x
+busy $DEV scan_elements/in_accel_x_en 0
+busy $DEV scan_elements/in_temp_en 1
+busy $DEV buffer0/in_accel_y_en 1
+busy $DEV buffer/length 64
+busy $DEV trigger/current_trigger ""
 # (calibbias is taken between two samples: 72-concurrency)
-busy in_accel_oversampling_ratio 1
-busy selftest 1
-echo 0 > $DEV/buffer/enable
-echo "" > $DEV/trigger/current_trigger
+busy $DEV in_accel_oversampling_ratio 1
+buffer_off $DEV
+# the magn device, its buffer on: the same, and its selftest
+buffer_on $MDEV magn_x
+busy $MDEV scan_elements/in_magn_x_en 0
+busy $MDEV scan_elements/in_magn_y_en 1
+busy $MDEV buffer0/in_magn_z_en 1
+busy $MDEV buffer/length 64
+busy $MDEV trigger/current_trigger ""
+busy $MDEV selftest 1
+buffer_off $MDEV
 echo 1 > $DEV/in_accel_oversampling_ratio
 eq "oversampling_ratio: the values available" \
 	"$(cat $DEV/in_accel_oversampling_ratio_available)" "1 4"

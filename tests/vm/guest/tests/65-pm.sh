@@ -91,7 +91,7 @@ echo "$bz" > $DEV/in_accel_z_calibbias
 
 # The data-ready trigger works after a power cycle
 check "suspended before the capture" wait_status suspended
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
+T=$(dr_trig)
 echo 100 > $DEV/sampling_frequency
 if capture "$T" 1 /tmp/pm.bin; then
 	check "capture after a power cycle: at least 50 samples in 1 s ($(samples /tmp/pm.bin))" \

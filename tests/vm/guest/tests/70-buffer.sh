@@ -5,7 +5,7 @@ set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 set_cal 0 0 0 25000
 
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
+T=$(dr_trig)
 check "driver registers its data-ready trigger" test -n "$T"
 echo 100 > $DEV/sampling_frequency 2>/dev/null || echo 100 > $DEV/in_sampling_frequency 2>/dev/null
 if capture "$T" 2 /tmp/buf1; then

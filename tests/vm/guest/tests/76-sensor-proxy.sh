@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: GPL-2.0
 # The program real users' devices run (issue 12): Debian 12's
 # iio-sensor-proxy 3.0 with its own udev rule, systemd-udevd and the system
-# bus, and monitor-sensor as the client. udev tags the device as the rule
-# says; iio-sensor-proxy reads raw x scale (it never reads _offset) through
+# bus, and monitor-sensor as the client. udev tags the accel device
+# (as9888-accel) as the rule says, and leaves the magn device (as9888-magn)
+# untagged: iio-sensor-proxy finds one accelerometer, the accel device; iio-sensor-proxy reads raw x scale (it never reads _offset) through
 # the mount matrix and turns it into the screen orientation that GNOME and
 # Phosh rotate to. At -20, 25 and 70 degC (set live) the unit is stepped
 # through the four screen postures and flat; each "Accelerometer orientation
@@ -31,13 +32,21 @@ udevadm trigger --action=add --subsystem-match=iio
 udevadm settle --timeout=60
 udevadm info -q property -p "${DEV#/sys}" > $O/props 2>&1
 T=$(sed -n 's/^IIO_SENSOR_PROXY_TYPE=//p' $O/props)
-diag "udev: IIO_SENSOR_PROXY_TYPE=$T"
-check "udev tags the device iio-poll-accel (80-iio-sensor-proxy.rules)" \
+diag "udev: as9888-accel: IIO_SENSOR_PROXY_TYPE=$T"
+check "udev tags the accel device iio-poll-accel (80-iio-sensor-proxy.rules)" \
 	sh -c "echo '$T' | grep -qw iio-poll-accel"
-check "udev tags the device iio-buffer-accel" sh -c "echo '$T' | grep -qw iio-buffer-accel"
-check "udev: no compass or light tag" sh -c "! echo '$T' | grep -q -e compass -e als"
+check "udev tags the accel device iio-buffer-accel" sh -c "echo '$T' | grep -qw iio-buffer-accel"
+check "udev: no compass or light tag on the accel device" sh -c "! echo '$T' | grep -q -e compass -e als"
 check "udev asks systemd for iio-sensor-proxy.service" \
 	grep -q '^SYSTEMD_WANTS=iio-sensor-proxy.service' $O/props
+udevadm info -q property -p "${MDEV#/sys}" > $O/mprops 2>&1
+MT=$(sed -n 's/^IIO_SENSOR_PROXY_TYPE=//p' $O/mprops)
+diag "udev: as9888-magn: IIO_SENSOR_PROXY_TYPE=$MT"
+check "udev knows the magn device" grep -q "^DEVPATH=.*/${MDEV##*/}\$" $O/mprops
+check "udev: the magn device is not tagged as an accelerometer" \
+	sh -c "! echo '$MT' | grep -q accel"
+check "udev: the magn device has no compass or light tag either" \
+	sh -c "! echo '$MT' | grep -q -e compass -e als"
 
 dbus-daemon --system --fork --print-pid > $O/dbus.pid 2>$O/dbus.err
 check "the system bus runs" test -S /run/dbus/system_bus_socket
@@ -64,6 +73,14 @@ check "it has an accelerometer" wait_line '^=== Has accelerometer'
 check "it has no ambient light sensor" grep -q '^=== No ambient light sensor' $O/ms.out
 check "it has no compass (the magnetometer has no tilt-compensated heading channel)" \
 	sh -c "! grep -q -e '^=== Has compass' -e '^+++ Compass appeared' $O/ms.out"
+# "Found IIO poll accelerometer at <sysfs path>" (and the like): only the
+# accel device
+F=$(grep -o 'Found [A-Za-z0-9 ]*accelerometer at [^ ]*' $O/isp.log | sort -u)
+echo "$F" | sed 's/^/# isp: /'
+check "iio-sensor-proxy found the accel device as an accelerometer" \
+	sh -c "echo '$F' | grep -q '/${DEV##*/}\$'"
+eq "iio-sensor-proxy found no other accelerometer (not the magn device)" \
+	"$(echo "$F" | grep -v "/${DEV##*/}\$" | grep .)" ""
 sed 's/^/# monitor-sensor: /' $O/ms.out
 grep -q '^=== Has accelerometer' $O/ms.out ||
 	{ sed 's/^/# dbus: /' $O/dbus.err; sed 's/^/# isp: /' $O/isp.log | tail -n 20; }

@@ -31,10 +31,11 @@ W=/tmp/cg
 mkdir -p $W
 load_sim
 load_driver
+dev_stale
 printf '%s\n' "temperature = 25" "offset = 40 -25 60" "noise = 1" "seed = 78" > $SIM/unit
 check "unit with the built-in EEPROM and offsets 40 -25 60" wait_dev 5
 N=${DEV##*iio:device}
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
+T=$(dr_trig)
 SE=$DEV/scan_elements
 [ -d "$SE" ] || SE=$DEV/buffer0
 CAL_DEF=$(cal_get)
@@ -83,6 +84,7 @@ check "knobs: the chip's counters carried on" test "$(stat_get chip_measurements
 eq "knobs: the device was not re-probed (its calibration is still loaded)" \
 	"$(cal_get)" "1.500000 2.500000 3.500000 26000"
 eq "knobs: the same IIO device" "$(iio_dev)" "$DEV"
+eq "knobs: the same magn device" "$(magn_of $DEV)" "$MDEV"
 set_cal $CAL_DEF
 
 # --- the ABI: constant scale, removed attributes ---------------------------
@@ -93,6 +95,14 @@ for a in in_accel_calibration in_accel_offset in_accel_x_offset in_accel_y_offse
 	in_accel_filter_low_pass_en; do
 	check_not "removed attribute $a does not exist" test -e $DEV/$a
 done
+# one device per sensor: the magnetometer and its selftest are the magn
+# device's, not the accel device's
+for a in in_magn_x_raw in_magn_y_raw in_magn_z_raw in_magn_x_scale in_magn_mount_matrix \
+	selftest scan_elements/in_magn_x_en buffer0/in_magn_x_en; do
+	check_not "as9888-accel: no $a (moved to as9888-magn)" test -e $DEV/$a
+done
+check_not "as9888-magn: no accelerometer or temperature attribute" \
+	sh -c "ls $MDEV | grep -q -e '^in_accel' -e '^in_temp'"
 eq "the accelerometer's scan type: s16 in 16 bits" \
 	"$(cat $SE/in_accel_x_type $SE/in_accel_y_type $SE/in_accel_z_type | sort -u)" "le:s16/16>>0"
 
@@ -164,7 +174,7 @@ grid_check() {
 }
 
 mg0=$(stat_get chip_magn_measurements)
-SCL=$(iio_attr -c as9888 accel_x scale 2>/dev/null)
+SCL=$(iio_attr -c as9888-accel accel_x scale 2>/dev/null)
 eq "libiio reads the same scale" "$SCL" "$SC"
 for TC in -20 25 70; do
 	sim_temp $TC
@@ -186,12 +196,12 @@ for TC in -20 25 70; do
 		grid_check "buffer" "$(scan_mean $W/scan.bin $CODE $SC)"
 		# iio_generic_buffer: prints (raw + offset) x scale per channel
 		scan_setup
-		timeout 60 iio_generic_buffer -n as9888 -t "$T" -c 32 -l 128 > $W/gb.txt 2>&1
+		timeout 60 iio_generic_buffer -n as9888-accel -t "$T" -c 32 -l 128 > $W/gb.txt 2>&1
 		grid_check "iio_generic_buffer" "$(awk -v t=$((TC * 1000)) \
 			'NF == 5 && $0 ~ /^[-0-9. ]+$/ && int($4) == t { for (i = 1; i <= 3; i++) s[i] += $i; n++ }
 			END { if (n) printf "%.6f %.6f %.6f %d\n", s[1] / n, s[2] / n, s[3] / n, n }' $W/gb.txt)"
 		# libiio's iio_readdev, raw scans x the scale libiio reads
-		timeout 60 iio_readdev -t "$T" -s 32 -b 16 as9888 accel_x accel_y accel_z temp timestamp \
+		timeout 60 iio_readdev -t "$T" -s 32 -b 16 as9888-accel accel_x accel_y accel_z temp timestamp \
 			> $W/readdev.bin 2> $W/readdev.err
 		grid_check "iio_readdev" "$(scan_mean $W/readdev.bin $CODE $SCL)"
 	done

@@ -15,7 +15,7 @@ set_unit "temperature = 25" "offset = 40 -25 60" "noise = 0"
 wait_dev 5
 set_cal 40 -25 60 25000
 N=${DEV##*iio:device}
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
+T=$(dr_trig)
 SE=$DEV/scan_elements
 [ -d "$SE" ] || SE=$DEV/buffer0
 for f in $SE/*_en; do echo 0 > $f; done

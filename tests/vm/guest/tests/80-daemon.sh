@@ -15,6 +15,7 @@ offset = 40 -25 60
 noise = 0.5
 seed = 7"
 printf '%s\n' "$U" > /tmp/unit.txt
+dev_stale
 printf '%s\n' "$U" > $SIM/unit
 wait_dev 5
 CALIBD=/bin/as9888-calibd
@@ -27,7 +28,7 @@ check "factory test of this chip through the driver writes a record" \
 tail -n 3 /tmp/ft.log | sed 's/^/# /'
 B="$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)"
 # start from the probe's state, DAC included
-rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
+dev_stale; rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
 eq "driver reload: the probe's calibration" "$(cal_get)" "$CAL0"
 check "restore --backend iio" sh -c "$CALIBD restore --backend iio --record /tmp/rec > /tmp/r.log 2>&1"
 sed 's/^/# /' /tmp/r.log
@@ -41,7 +42,7 @@ eq "calibbias = the record's DAC, as the factory test left it" \
 A=$(accel_mean 16)
 diag "compensated readings after restore: $A"
 accel_near "compensated readings after restore: 0 0 1 g" "$A" "0 0 $G_LSB" 4
-rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
+dev_stale; rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
 eq "driver reload forgets the calibration" "$(cal_get)" "$CAL0"
 check "restore after the reload" sh -c "$CALIBD restore --backend iio --record /tmp/rec > /tmp/r.log 2>&1"
 eq "same calibration after reload + restore" "$(cal_get)" "$CAL"
@@ -62,11 +63,13 @@ sed 's/^/# /' /tmp/r2.log
 eq "nothing applied from the simulator's record" "$(cal_get)" "$CAL0"
 
 # A record of another chip (ET2 differs): made on that chip, refused on this one
+dev_stale
 printf '%s\neeprom = 9a 71 15 5c 80 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 52\n' "$U" > $SIM/unit
 wait_dev 5
 rm -f /tmp/rec2
 check "factory test of another chip" \
 	sh -c "$CALIBD factory-test --backend iio --record /tmp/rec2 > /tmp/ft2.log 2>&1"
+dev_stale
 printf '%s\n' "$U" > $SIM/unit
 wait_dev 5
 if $CALIBD restore --backend iio --record /tmp/rec2 > /tmp/r2.log 2>&1; then

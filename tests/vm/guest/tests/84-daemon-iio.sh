@@ -30,6 +30,11 @@ state() {
 	SE=$DEV/scan_elements
 	[ -d "$SE" ] || SE=$DEV/buffer0
 	for e in $SE/*_en; do echo "$(basename $e)=$(cat $e)"; done
+	# the magn device: the daemon runs its selftest
+	for a in sampling_frequency trigger/current_trigger buffer/length buffer/enable; do
+		echo "magn $a=$(cat $MDEV/$a)"
+	done
+	for e in $(se_dir $MDEV)/*_en; do echo "magn $(basename $e)=$(cat $e)"; done
 }
 uptime_ms() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
 ft_iio() {
@@ -42,6 +47,7 @@ ft_iio() {
 load_driver
 load_sim
 printf '%s\n' "$U84" > /tmp/iio/unit.txt
+dev_stale
 printf '%s\n' "$U84" > $SIM/unit
 wait_dev 5
 
@@ -49,9 +55,8 @@ wait_dev 5
 echo 10 > $DEV/sampling_frequency
 echo 4 > $DEV/in_accel_oversampling_ratio
 echo 3 > $DEV/in_accel_x_calibbias
-SE=$DEV/scan_elements
-[ -d "$SE" ] || SE=$DEV/buffer0
-echo 1 > $SE/in_magn_x_en
+echo 1 > $(se_dir $MDEV)/in_magn_x_en
+echo 1 > $(se_dir $DEV)/in_temp_en
 BEFORE=$(state)
 
 rm -f /tmp/iio/rec

@@ -11,6 +11,7 @@ SOCK=/tmp/calibd.sock
 # the unit of 80-daemon.sh, which the record is for
 load_sim
 load_driver
+dev_stale
 cat /tmp/unit.txt > $SIM/unit
 wait_dev 5
 # the calibration the record gives, as the driver reads it back
@@ -35,13 +36,11 @@ DPID=$!
 check "daemon applies the record to the device present at start" wait_cal
 
 uncal
-rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko
+dev_stale; rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko
 check "module reload: the daemon applies the record without being asked" wait_cal
 
-C=$(client)
 uncal
-echo "$C" > /sys/bus/i2c/drivers/as9888_i2c/unbind
-echo "$C" > /sys/bus/i2c/drivers/as9888_i2c/bind
+rebind
 check "unbind/bind: the daemon applies the record again" wait_cal
 grep "applied to" /tmp/daemon.log | tail -n 3 | sed 's/^/# /'
 

@@ -17,10 +17,11 @@ mkdir -p $O
 
 load_sim
 load_driver
+dev_stale
 cat /tmp/unit.txt > $SIM/unit
 wait_dev 5
 NAME=$(cat $DEV/name)
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888" | head -n1)
+T=$(dr_trig)
 dac() { echo $(cat $DEV/in_accel_x_calibbias $DEV/in_accel_y_calibbias $DEV/in_accel_z_calibbias); }
 # what the record gives, restored with nobody else on the device
 $CALIBD restore --backend iio --record /tmp/rec > /dev/null 2>&1
@@ -85,9 +86,7 @@ $CALIBD daemon --backend iio --record /tmp/rec --socket $SOCK 2> $O/daemon.log &
 DPID=$!
 _i=0
 while ! grep -q "applied to" $O/daemon.log && [ $_i -lt 100 ]; do sleep 0.1; _i=$((_i + 1)); done
-C=$(client)
-echo "$C" > /sys/bus/i2c/drivers/as9888_i2c/unbind
-echo "$C" > /sys/bus/i2c/drivers/as9888_i2c/bind
+rebind
 wait_dev 5
 hold
 _i=0
