@@ -397,3 +397,22 @@ leak_check() {
 		nok "kmemleak: no leaks"
 	fi
 }
+
+# --- RSTN and runtime PM ------------------------------------------------------
+# rstn_out: "hi" or "lo", the level the driver drives RSTN at now
+rstn_out() {
+	grep 'AS9888_RSTN' /sys/kernel/debug/gpio | grep -o 'out [a-z]*' | cut -d' ' -f2
+}
+# pm_dir: the runtime PM directory of the bus device (DEV set by wait_dev)
+pm_dir() { echo "$(dirname "$(readlink -f $DEV)")/power"; }
+# wait_runtime STATE: the bus device's runtime_status reaches STATE within
+# 30 s (autosuspend is 2 s; more is a stall)
+wait_runtime() {
+	_wr_i=0
+	while [ $_wr_i -lt 300 ]; do
+		[ "$(cat "$(pm_dir)/runtime_status")" = "$1" ] && return 0
+		sleep 0.1; _wr_i=$((_wr_i + 1))
+	done
+	diag "runtime_status $(cat "$(pm_dir)/runtime_status"), waited for $1"
+	return 1
+}

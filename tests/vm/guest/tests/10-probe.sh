@@ -20,8 +20,15 @@ G=$(cat /sys/kernel/debug/gpio 2>/dev/null)
 for l in AS9888_RSTN AS9888_INT1 AS9888_INT2; do
 	check "GPIO line $l named" sh -c "echo '$G' | grep -q '$l'"
 done
-check "RSTN requested as reset by the driver, output high (deasserted)" \
-	sh -c "echo '$G' | grep 'AS9888_RSTN' | grep -q 'reset.*out hi'"
+check "RSTN requested as reset by the driver" \
+	sh -c "echo '$G' | grep 'AS9888_RSTN' | grep -q 'reset'"
+# RSTN follows the supplies: released (high) while powered, held low while
+# runtime PM has the supplies off (no back-powering, issue 11)
+echo on > "$(pm_dir)/control"
+eq "RSTN high (deasserted) while the chip is powered" "$(rstn_out)" hi
+echo auto > "$(pm_dir)/control"
+check "runtime PM switches the supplies off when unused" wait_runtime suspended
+eq "RSTN low while the supplies are off" "$(rstn_out)" lo
 eq "accel mount matrix from the software node" \
 	"$(cat $DEV/in_accel_mount_matrix 2>/dev/null)" "0, 1, 0; -1, 0, 0; 0, 0, 1"
 eq "magn mount matrix from the software node" \
