@@ -257,7 +257,16 @@ The driver provides:
 - the magnetometer self-test (MS = 0x08) and its judgment;
 - the EEPROM as a read-only NVMEM device;
 - runtime PM: VDD and VID are off while the device is unused, and the
-  trim and state are restored at power-up.
+  trim and state are restored at power-up; RSTN is held low while the
+  supplies are off (a high input would feed the unpowered chip), so
+  every power-up is also a reset pulse;
+- system sleep: the data-ready trigger is stopped and INT1 disabled
+  before the supplies go off, and no measurement starts until resume;
+- INT1, or INT2 when only INT2 is named, rising edge or level high (a
+  level interrupt is cleared by reading INTxST); a named interrupt that
+  cannot be got fails probe;
+- a watchdog that restarts a sample whose data-ready edge never came
+  (1 s) and retries a sample that could not be started.
 EOF
 )"
 
