@@ -7,7 +7,10 @@
 # assert that, and that the pulse really had no effect on this unit.
 set_unit "temperature = 25" "noise = 0"
 check "healthy unit probes" wait_dev 5
-eq "healthy unit: the probe's reset pulse took effect" "$(stat_get chip_resets)" 1
+# at least one: RSTN is also held low while runtime PM has the supplies
+# off, so a power-up after probe is one more pulse
+r=$(stat_get chip_resets)
+check "healthy unit: the probe's reset pulse took effect ($r resets)" test "$r" -ge 1
 z_ok=$(cat $DEV/in_accel_z_raw)
 
 n0=$(dmesg | wc -l)
