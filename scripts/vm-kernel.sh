@@ -116,7 +116,10 @@ build_modules() {
 	fi
 	mkdir -p "$stage"
 	cp "$STAMP_DIR/vm-kernel-$k" "$stage/.kernel-id"
-	rsync -a --delete --exclude='*.o' --exclude='*.ko' --exclude='*.cmd' \
+	# by content, and a copied file gets the time of the copy: a checkout
+	# whose file is older than the staged object (another branch, another
+	# clone) must still rebuild it
+	rsync -rlpD --checksum --delete --exclude='*.o' --exclude='*.ko' --exclude='*.cmd' \
 		--exclude='*.mod*' --exclude='modules.order' --exclude='Module.symvers' \
 		--exclude='ko/' \
 		--include='/Kbuild' \

@@ -55,11 +55,19 @@ ensure_pkgs busybox-static qemu-system-x86 cpio gzip meson ninja-build \
 build_daemon() {
 	local b="$VM_DIR/daemon-static" t
 	t=$(now)
+	# The cache is shared by every checkout: a build directory set up from
+	# another checkout would build that checkout's daemon. Start afresh.
+	if [ -f "$b/build.ninja" ] &&
+		[ "$(cat "$b/.as9888-source" 2>/dev/null)" != "$AS9888_REPO" ]; then
+		log "as9888-calibd (static): build directory set up from another checkout, set up again"
+		rm -rf "$b"
+	fi
 	if [ ! -f "$b/build.ninja" ]; then
 		meson setup "$b" "$AS9888_REPO" -Dprefer_static=true \
 			-Dc_link_args=-static -Dbuildtype=release \
 			>"$LOG_DIR/vm-daemon.log" 2>&1 ||
 			die "meson setup failed, see $LOG_DIR/vm-daemon.log"
+		echo "$AS9888_REPO" >"$b/.as9888-source"
 	fi
 	ninja -C "$b" daemon/as9888-calibd >>"$LOG_DIR/vm-daemon.log" 2>&1 ||
 		die "static as9888-calibd build failed, see $LOG_DIR/vm-daemon.log"
