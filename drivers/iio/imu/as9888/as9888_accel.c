@@ -18,7 +18,6 @@
 #include <linux/ctype.h>
 #include <linux/device.h>
 #include <linux/err.h>
-#include <linux/interrupt.h>
 #include <linux/kstrtox.h>
 #include <linux/math64.h>
 #include <linux/mutex.h>
@@ -31,9 +30,6 @@
 
 #include <linux/iio/buffer.h>
 #include <linux/iio/iio.h>
-#include <linux/iio/trigger.h>
-#include <linux/iio/trigger_consumer.h>
-#include <linux/iio/triggered_buffer.h>
 
 #include <asm/byteorder.h>
 
@@ -586,75 +582,23 @@ static bool as9888_accel_fill_scan(struct iio_dev *indio_dev,
 	return true;
 }
 
-static irqreturn_t as9888_accel_trigger_handler(int irq, void *p)
+static void as9888_accel_push(struct iio_dev *indio_dev,
+			      const struct as9888_raw_sample *s, s64 ts)
 {
-	struct iio_poll_func *pf = p;
-	struct iio_dev *indio_dev = pf->indio_dev;
 	struct as9888_accel *accel = iio_priv(indio_dev);
-	struct as9888_chip *chip = accel->sensor.chip;
-	const struct as9888_raw_sample *s;
-	struct as9888_raw_sample own;
-	s64 ts = pf->timestamp;
-	int ret;
 
-	scoped_guard(mutex, &chip->lock) {
-		if (as9888_on_drdy_trigger(indio_dev)) {
-			ret = as9888_trig_sample(chip, &s);
-		} else {
-			s = &own;
-			ret = as9888_measure(chip, AS9888_ACCEL,
-					     AS9888_MS_SINGLE, false, &own,
-					     &ts);
-		}
-
-		if (!ret && as9888_accel_fill_scan(indio_dev, s))
-			iio_push_to_buffers_with_ts(indio_dev, &accel->scan,
-						    sizeof(accel->scan), ts);
-	}
-
-	/* The last device done with the sample starts the next one */
-	iio_trigger_notify_done(indio_dev->trig);
-
-	return IRQ_HANDLED;
+	if (as9888_accel_fill_scan(indio_dev, s))
+		iio_push_to_buffers_with_ts(indio_dev, &accel->scan,
+					    sizeof(accel->scan), ts);
 }
 
-/**
- * as9888_accel_alloc() - the accelerometer IIO device, ready to register
- * @chip: chip state
- *
- * Return: the device or an ERR_PTR().
- */
-struct iio_dev *as9888_accel_alloc(struct as9888_chip *chip)
-{
-	struct device *dev = chip->dev;
-	struct iio_dev *indio_dev;
-	struct as9888_accel *accel;
-	int ret;
-
-	indio_dev = devm_iio_device_alloc(dev, sizeof(*accel));
-	if (!indio_dev)
-		return ERR_PTR(-ENOMEM);
-
-	accel = iio_priv(indio_dev);
-	accel->sensor.chip = chip;
-	accel->sensor.id = AS9888_ACCEL;
-
-	indio_dev->name = "as9888-accel";
-	indio_dev->info = &as9888_accel_info;
-	indio_dev->modes = INDIO_DIRECT_MODE;
-	indio_dev->num_channels = ARRAY_SIZE(as9888_accel_channels);
-	indio_dev->channels = as9888_channels_for(chip, as9888_accel_channels,
-						  ARRAY_SIZE(as9888_accel_channels));
-	if (!indio_dev->channels)
-		return ERR_PTR(-ENOMEM);
-
-	ret = devm_iio_triggered_buffer_setup(dev, indio_dev,
-					      iio_pollfunc_store_time,
-					      as9888_accel_trigger_handler,
-					      &as9888_buffer_ops);
-	if (ret)
-		return ERR_PTR(dev_err_probe(dev, ret,
-					     "cannot set up accelerometer buffer\n"));
-
-	return indio_dev;
-}
+const struct as9888_sensor_desc as9888_accel_desc = {
+	.id = AS9888_ACCEL,
+	.name = "as9888-accel",
+	.priv_size = sizeof(struct as9888_accel),
+	.info = &as9888_accel_info,
+	.channels = as9888_accel_channels,
+	.num_channels = ARRAY_SIZE(as9888_accel_channels),
+	.men = false,
+	.push = as9888_accel_push,
+};

@@ -518,33 +518,6 @@ as9888_get_mount_matrix(const struct iio_dev *indio_dev,
 }
 
 /*
- * sampling_frequency is that of the data-ready trigger: without INT1 the
- * buffer runs on another trigger, which sets the rate, so the channels go
- * without it.
- */
-const struct iio_chan_spec *
-as9888_channels_for(struct as9888_chip *chip, const struct iio_chan_spec *tmpl,
-		    size_t n)
-{
-	struct iio_chan_spec *chans;
-	size_t i;
-
-	if (chip->irq)
-		return tmpl;
-
-	chans = devm_kmemdup(chip->dev, tmpl, n * sizeof(*tmpl), GFP_KERNEL);
-	if (!chans)
-		return NULL;
-
-	for (i = 0; i < n; i++) {
-		chans[i].info_mask_shared_by_all = 0;
-		chans[i].info_mask_shared_by_all_available = 0;
-	}
-
-	return chans;
-}
-
-/*
  * Register access for debugging (iio/iio:deviceX/direct_reg_access); it
  * also makes the IIO core create the devices' debugfs directories, the
  * magnetometer's holding selftest_readings. Serialised with the driver's own sequences.
@@ -933,11 +906,11 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 	/* Known before the channels are: sampling_frequency needs it */
 	chip->irq = irq;
 
-	chip->iio[AS9888_ACCEL] = as9888_accel_alloc(chip);
+	chip->iio[AS9888_ACCEL] = as9888_sensor_alloc(chip, &as9888_accel_desc);
 	if (IS_ERR(chip->iio[AS9888_ACCEL]))
 		return PTR_ERR(chip->iio[AS9888_ACCEL]);
 
-	chip->iio[AS9888_MAGN] = as9888_magn_alloc(chip);
+	chip->iio[AS9888_MAGN] = as9888_sensor_alloc(chip, &as9888_magn_desc);
 	if (IS_ERR(chip->iio[AS9888_MAGN]))
 		return PTR_ERR(chip->iio[AS9888_MAGN]);
 

@@ -200,14 +200,41 @@ struct as9888_chip {
 	struct as9888_accel_cal cal;
 };
 
+struct as9888_sensor_desc;
+
 /**
  * struct as9888_sensor - what the IIO private data of each device starts with
  * @chip:	the chip
- * @id:		which sensor of the chip the device is
+ * @desc:	which sensor of the chip the device is
  */
 struct as9888_sensor {
 	struct as9888_chip *chip;
+	const struct as9888_sensor_desc *desc;
+};
+
+/**
+ * struct as9888_sensor_desc - what makes the IIO device of a sensor
+ * @id:		which sensor
+ * @name:	the IIO device's name
+ * @priv_size:	size of its IIO private data, which starts with a
+ *		struct as9888_sensor
+ * @info:	its IIO info
+ * @channels:	its channels, with sampling_frequency (dropped without INT1)
+ * @num_channels: how many
+ * @men:	its own measurements include the magnetometer
+ * @push:	push the device's channels of a checked sample to its buffer,
+ *		with the chip's lock held
+ */
+struct as9888_sensor_desc {
 	enum as9888_sensor_id id;
+	const char *name;
+	size_t priv_size;
+	const struct iio_info *info;
+	const struct iio_chan_spec *channels;
+	unsigned int num_channels;
+	bool men;
+	void (*push)(struct iio_dev *indio_dev,
+		     const struct as9888_raw_sample *s, s64 ts);
 };
 
 static inline struct as9888_sensor *as9888_sensor(struct iio_dev *indio_dev)
@@ -236,9 +263,6 @@ int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,
 const struct iio_mount_matrix *
 as9888_get_mount_matrix(const struct iio_dev *indio_dev,
 			const struct iio_chan_spec *chan);
-const struct iio_chan_spec *
-as9888_channels_for(struct as9888_chip *chip, const struct iio_chan_spec *tmpl,
-		    size_t n);
 int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
 			      unsigned int writeval, unsigned int *readval);
 int as9888_read_samp_freq(struct as9888_chip *chip, int *val);
@@ -246,14 +270,15 @@ int as9888_write_samp_freq(struct as9888_chip *chip, int freq);
 int as9888_read_samp_freq_avail(const int **vals, int *type, int *length);
 
 /* The accelerometer device, as9888_accel.c */
-struct iio_dev *as9888_accel_alloc(struct as9888_chip *chip);
+extern const struct as9888_sensor_desc as9888_accel_desc;
 
 /* The magnetometer device, as9888_magn.c */
-struct iio_dev *as9888_magn_alloc(struct as9888_chip *chip);
+extern const struct as9888_sensor_desc as9888_magn_desc;
 void as9888_magn_debugfs_init(struct iio_dev *indio_dev);
 
 /* The data-ready trigger and the buffers, as9888_trigger.c */
-extern const struct iio_buffer_setup_ops as9888_buffer_ops;
+struct iio_dev *as9888_sensor_alloc(struct as9888_chip *chip,
+				    const struct as9888_sensor_desc *desc);
 int as9888_trigger_setup(struct as9888_chip *chip);
 bool as9888_on_drdy_trigger(struct iio_dev *indio_dev);
 /* These two run with chip->lock held */

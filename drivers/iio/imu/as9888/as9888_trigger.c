@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * ALSEN AS9888: the data-ready trigger, shared by the accelerometer and the
- * magnetometer IIO devices, and the buffer set-up both devices use.
+ * magnetometer IIO devices, and what both devices share around it: their
+ * allocation with a triggered buffer, the buffer set-up and the trigger
+ * handler.
  *
  * The chip has no output data rate: the trigger starts each measurement
  * itself, once per sampling period, and INT1 fires it when the sample is
@@ -24,6 +26,7 @@
 #include <linux/bitops.h>
 #include <linux/cleanup.h>
 #include <linux/device.h>
+#include <linux/err.h>
 #include <linux/interrupt.h>
 #include <linux/irq.h>
 #include <linux/jiffies.h>
@@ -39,6 +42,8 @@
 #include <linux/iio/buffer.h>
 #include <linux/iio/iio.h>
 #include <linux/iio/trigger.h>
+#include <linux/iio/trigger_consumer.h>
+#include <linux/iio/triggered_buffer.h>
 
 #include "as9888_core.h"
 
@@ -362,13 +367,13 @@ static int as9888_buffer_postenable(struct iio_dev *indio_dev)
 	guard(mutex)(&chip->lock);
 
 	/* A running trigger measures the magnetometer from its next sample */
-	chip->trig_users |= BIT(sensor->id);
+	chip->trig_users |= BIT(sensor->desc->id);
 	if (chip->trig_running)
 		return 0;
 
 	ret = as9888_trig_start(chip);
 	if (ret)
-		chip->trig_users &= ~BIT(sensor->id);
+		chip->trig_users &= ~BIT(sensor->desc->id);
 
 	return ret;
 }
@@ -383,7 +388,7 @@ static int as9888_buffer_predisable(struct iio_dev *indio_dev)
 
 	guard(mutex)(&chip->lock);
 
-	chip->trig_users &= ~BIT(sensor->id);
+	chip->trig_users &= ~BIT(sensor->desc->id);
 	if (chip->trig_users || !chip->trig_running)
 		return 0;
 
@@ -397,12 +402,119 @@ static int as9888_buffer_postdisable(struct iio_dev *indio_dev)
 	return 0;
 }
 
-const struct iio_buffer_setup_ops as9888_buffer_ops = {
+static const struct iio_buffer_setup_ops as9888_buffer_ops = {
 	.preenable = as9888_buffer_preenable,
 	.postenable = as9888_buffer_postenable,
 	.predisable = as9888_buffer_predisable,
 	.postdisable = as9888_buffer_postdisable,
 };
+
+/*
+ * The trigger handler of both devices: the sample of the data-ready
+ * trigger's edge, or one measured for this device alone on another
+ * trigger, goes to the device's buffer.
+ */
+static irqreturn_t as9888_trigger_handler(int irq, void *p)
+{
+	struct iio_poll_func *pf = p;
+	struct iio_dev *indio_dev = pf->indio_dev;
+	struct as9888_sensor *sensor = as9888_sensor(indio_dev);
+	const struct as9888_sensor_desc *desc = sensor->desc;
+	struct as9888_chip *chip = sensor->chip;
+	const struct as9888_raw_sample *s;
+	struct as9888_raw_sample own;
+	s64 ts = pf->timestamp;
+	int ret;
+
+	scoped_guard(mutex, &chip->lock) {
+		if (as9888_on_drdy_trigger(indio_dev)) {
+			ret = as9888_trig_sample(chip, &s);
+		} else {
+			s = &own;
+			ret = as9888_measure(chip, desc->id, AS9888_MS_SINGLE,
+					     desc->men, &own, &ts);
+		}
+
+		if (!ret)
+			desc->push(indio_dev, s, ts);
+	}
+
+	/* The last device done with the sample starts the next one */
+	iio_trigger_notify_done(indio_dev->trig);
+
+	return IRQ_HANDLED;
+}
+
+/*
+ * sampling_frequency is that of the data-ready trigger: without INT1 the
+ * buffer runs on another trigger, which sets the rate, so the channels go
+ * without it.
+ */
+static const struct iio_chan_spec *
+as9888_channels_for(struct as9888_chip *chip, const struct iio_chan_spec *tmpl,
+		    size_t n)
+{
+	struct iio_chan_spec *chans;
+	size_t i;
+
+	if (chip->irq)
+		return tmpl;
+
+	chans = devm_kmemdup(chip->dev, tmpl, n * sizeof(*tmpl), GFP_KERNEL);
+	if (!chans)
+		return NULL;
+
+	for (i = 0; i < n; i++) {
+		chans[i].info_mask_shared_by_all = 0;
+		chans[i].info_mask_shared_by_all_available = 0;
+	}
+
+	return chans;
+}
+
+/**
+ * as9888_sensor_alloc() - the IIO device of a sensor, ready to register
+ * @chip: chip state
+ * @desc: the sensor
+ *
+ * Return: the device or an ERR_PTR().
+ */
+struct iio_dev *as9888_sensor_alloc(struct as9888_chip *chip,
+				    const struct as9888_sensor_desc *desc)
+{
+	struct device *dev = chip->dev;
+	struct as9888_sensor *sensor;
+	struct iio_dev *indio_dev;
+	int ret;
+
+	indio_dev = devm_iio_device_alloc(dev, desc->priv_size);
+	if (!indio_dev)
+		return ERR_PTR(-ENOMEM);
+
+	sensor = iio_priv(indio_dev);
+	sensor->chip = chip;
+	sensor->desc = desc;
+
+	indio_dev->name = desc->name;
+	indio_dev->info = desc->info;
+	indio_dev->modes = INDIO_DIRECT_MODE;
+	indio_dev->num_channels = desc->num_channels;
+	indio_dev->channels = as9888_channels_for(chip, desc->channels,
+						  desc->num_channels);
+	if (!indio_dev->channels)
+		return ERR_PTR(-ENOMEM);
+
+	ret = devm_iio_triggered_buffer_setup(dev, indio_dev,
+					      iio_pollfunc_store_time,
+					      as9888_trigger_handler,
+					      &as9888_buffer_ops);
+	if (ret)
+		return ERR_PTR(dev_err_probe(dev, ret,
+					     "cannot set up the %s buffer\n",
+					     desc->name));
+
+	return indio_dev;
+}
 
 /*
  * System sleep: a running data-ready trigger is stopped over it, and no
