@@ -326,7 +326,11 @@ static void as9888_trig_reenable(struct iio_trigger *trig)
 				     !READ_ONCE(chip->trig_running),
 				     ns_to_ktime(wait_ns));
 
-	/* The gap is handed over to whoever waits for it, see as9888_wait_gap() */
+	/*
+	 * The gap is handed over to whoever waits for it, see
+	 * as9888_wait_gap(). Bounded: every waiter leaves within its own
+	 * deadline (two periods and the slack, then one measurement).
+	 */
 	wait_event(chip->gap_wq, !READ_ONCE(chip->gap_waiters));
 
 	guard(mutex)(&chip->lock);
