@@ -90,7 +90,9 @@ static uint64_t raw_now_ns(struct transport *t)
 /*
  * Wait until the pin is high. An edge event may be left over from an
  * earlier measurement whose pin was deasserted since: an event only counts
- * when the pin reads high afterwards.
+ * when the pin reads high afterwards. At the deadline the level decides:
+ * on a busy machine the edge's event can reach us after the pin rose (the
+ * kernel queues it from a thread), and a pin that reads high has risen.
  */
 static int raw_wait_pin(struct transport *t, enum transport_pin pin,
 			uint64_t timeout_ns)
@@ -108,8 +110,10 @@ static int raw_wait_pin(struct transport *t, enum transport_pin pin,
 		if (now >= deadline)
 			return 0;
 		ret = gpio_wait_rising(line, deadline - now);
-		if (ret <= 0)
+		if (ret < 0)
 			return ret;
+		if (ret == 0)
+			return gpio_get(line);
 	}
 }
 

@@ -49,7 +49,9 @@
  *		interrupt does (the interrupt simulator has edges only);
  *		"bad" as "int1" plus interrupt-names = "INT1" on the software
  *		node, whose interrupts no one can get (a malformed
- *		specifier); read: the wiring in use
+ *		specifier); "int2" INT2 only, rising edge, named "INT2" in
+ *		interrupt-names, as a board that wires INT2 alone describes
+ *		it (INT1 goes nowhere); read: the wiring in use
  *  fail_next	write N: the next N bus transfers fail (I2C NAK, SPI error)
  *		without reaching the chip; read: how many are left
  * Live environment, without re-creating the chip or the device (registers,
@@ -115,11 +117,12 @@ enum as9888_sim_wiring {
 	AS9888_SIM_WIRING_INT1 = 0,
 	AS9888_SIM_WIRING_INT1_LEVEL,
 	AS9888_SIM_WIRING_BAD,
+	AS9888_SIM_WIRING_INT2,
 	AS9888_SIM_NWIRINGS,
 };
 
 static const char *const as9888_sim_wiring_names[AS9888_SIM_NWIRINGS] = {
-	"int1", "int1-level", "bad",
+	"int1", "int1-level", "bad", "int2",
 };
 
 /* Longest value accepted by a knob */
@@ -179,7 +182,8 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @rdev:	the chip's supply
  * @knobs:	the live environment files of debugfs
  * @wiring:	how INT1 reaches the driver, under @cfg_lock
- * @node:	the software node of the device in use
+ * @fwnode:	the firmware node of the device in use
+ * @board_fwnode: the firmware node of wiring=int2 (see as9888_sim_board_ops)
  * @lvl_domain:	the level-triggered interrupt controller (one line, INT1)
  * @lvl_work:	raises its interrupt from hard interrupt context
  * @lvl_masked:	its line is masked
@@ -215,7 +219,8 @@ struct as9888_sim {
 	struct regulator_dev *rdev;
 	struct as9888_sim_knob knobs[AS9888_SIM_NKNOBS];
 	enum as9888_sim_wiring wiring;
-	const struct software_node *node;
+	struct fwnode_handle *fwnode;
+	struct fwnode_handle board_fwnode;
 	struct irq_domain *lvl_domain;
 	struct irq_work lvl_work;
 	bool lvl_masked;
@@ -269,6 +274,34 @@ static const struct property_entry as9888_sim_bad_props[] = {
 static const struct software_node as9888_sim_bad_node = {
 	.name = "as9888-sim-chip-bad",
 	.properties = as9888_sim_bad_props,
+};
+
+/* wiring=int2: the properties of a board that wires INT2 alone */
+static const char * const as9888_sim_int2_names[] = { "INT2" };
+
+static const struct property_entry as9888_sim_int2_props[] = {
+	PROPERTY_ENTRY_STRING("compatible", "alsen,as9888"),
+	PROPERTY_ENTRY_STRING_ARRAY("mount-matrix", as9888_sim_mount_matrix),
+	PROPERTY_ENTRY_STRING_ARRAY("interrupt-names", as9888_sim_int2_names),
+#ifdef AS9888_SIM_SWNODE_GPIO
+	PROPERTY_ENTRY_GPIO("reset-gpios", &as9888_sim_gpio_node,
+			    AS9888_SIM_RSTN, GPIO_ACTIVE_LOW),
+#endif
+	{ }
+};
+
+static const struct software_node as9888_sim_int2_node = {
+	.name = "as9888-sim-chip-int2",
+	.properties = as9888_sim_int2_props,
+};
+
+/* Registered in this order, unregistered in the reverse order */
+static const struct software_node *as9888_sim_nodes[] = {
+	&as9888_sim_gpio_node,
+	&as9888_sim_dev_node,
+	&as9888_sim_bad_node,
+	&as9888_sim_int2_node,
+	NULL
 };
 
 #ifndef AS9888_SIM_SWNODE_GPIO
@@ -790,6 +823,68 @@ static int as9888_sim_gpio_to_irq(struct gpio_chip *gc, unsigned int offset)
 	return irq_create_mapping(s->domain, offset) ?: -ENXIO;
 }
 
+/* --- the firmware node of wiring=int2 ------------------------------------- */
+
+/*
+ * A board that wires INT2 alone names it in interrupt-names, and the
+ * driver gets it with fwnode_irq_get(). A software node has properties but
+ * no interrupts, so the device gets a firmware node of its own, as a
+ * device tree or ACPI node would be: its interrupts are the adapter's
+ * lines, and its properties are those of as9888_sim_int2_node, its
+ * secondary node. The property operations answer -EINVAL ("no such
+ * property"), which sends the property API on to the secondary node.
+ */
+static bool as9888_sim_board_present(const struct fwnode_handle *fwnode,
+				     const char *propname)
+{
+	return false;
+}
+
+static int as9888_sim_board_read_int(const struct fwnode_handle *fwnode,
+				     const char *propname,
+				     unsigned int elem_size, void *val,
+				     size_t nval)
+{
+	return -EINVAL;
+}
+
+static int as9888_sim_board_read_str(const struct fwnode_handle *fwnode,
+				     const char *propname, const char **val,
+				     size_t nval)
+{
+	return -EINVAL;
+}
+
+static const char *as9888_sim_board_name(const struct fwnode_handle *fwnode)
+{
+	return "as9888-sim-board";
+}
+
+/* Interrupt 0, the only one as9888_sim_int2_props names: INT2 */
+static int as9888_sim_board_irq(const struct fwnode_handle *fwnode,
+				unsigned int index)
+{
+	struct as9888_sim *s = container_of(fwnode, struct as9888_sim,
+					    board_fwnode);
+	unsigned int irq;
+
+	if (index)
+		return -EINVAL;
+	irq = irq_create_mapping(s->domain, AS9888_SIM_INT2);
+	if (!irq)
+		return -ENXIO;
+	irq_set_irq_type(irq, IRQ_TYPE_EDGE_RISING);
+	return irq;
+}
+
+static const struct fwnode_operations as9888_sim_board_ops = {
+	.property_present = as9888_sim_board_present,
+	.property_read_int_array = as9888_sim_board_read_int,
+	.property_read_string_array = as9888_sim_board_read_str,
+	.get_name = as9888_sim_board_name,
+	.irq_get = as9888_sim_board_irq,
+};
+
 /* --- device --------------------------------------------------------------- */
 
 /*
@@ -801,13 +896,9 @@ static int as9888_sim_gpio_to_irq(struct gpio_chip *gc, unsigned int offset)
  */
 static int as9888_sim_add_client(struct as9888_sim *s)
 {
-	const struct software_node *node =
-		s->wiring == AS9888_SIM_WIRING_BAD ? &as9888_sim_bad_node :
-						     &as9888_sim_dev_node;
-	struct fwnode_handle *fwnode = software_node_fwnode(node);
+	struct fwnode_handle *fwnode;
 	struct i2c_board_info info = {
 		I2C_BOARD_INFO("as9888", AS9888_SIM_ADDR),
-		.fwnode = fwnode,
 	};
 	struct i2c_client *client;
 	struct spi_device *sdev;
@@ -815,7 +906,19 @@ static int as9888_sim_add_client(struct as9888_sim *s)
 
 	if (s->client || s->spi)
 		return 0;
-	s->node = node;
+	switch (s->wiring) {
+	case AS9888_SIM_WIRING_BAD:
+		fwnode = software_node_fwnode(&as9888_sim_bad_node);
+		break;
+	case AS9888_SIM_WIRING_INT2:
+		fwnode = &s->board_fwnode;
+		break;
+	default:
+		fwnode = software_node_fwnode(&as9888_sim_dev_node);
+		break;
+	}
+	s->fwnode = fwnode;
+	info.fwnode = fwnode;
 	/* a device (re)appears on a freshly powered chip */
 	as9888_sim_power_on(s);
 	if (s->wiring == AS9888_SIM_WIRING_INT1_LEVEL) {
@@ -823,6 +926,11 @@ static int as9888_sim_add_client(struct as9888_sim *s)
 		if (!irq)
 			return -ENXIO;
 		irq_set_irq_type(irq, IRQ_TYPE_LEVEL_HIGH);
+	} else if (s->wiring == AS9888_SIM_WIRING_INT2) {
+		/* the bus's interrupt is the node's first, as from firmware */
+		irq = as9888_sim_board_irq(fwnode, 0);
+		if (irq < 0)
+			return irq;
 	} else {
 		irq = irq_create_mapping(s->domain, AS9888_SIM_INT1);
 		if (!irq)
@@ -875,7 +983,7 @@ static void as9888_sim_del_client(struct as9888_sim *s)
 		device_unregister(&s->client->dev);
 		s->client = NULL;
 #if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 12, 0)
-		fwnode_handle_put(software_node_fwnode(s->node));
+		fwnode_handle_put(s->fwnode);
 #endif
 	}
 }
@@ -1381,22 +1489,12 @@ static int __init as9888_sim_init(void)
 	 */
 	regulator_has_full_constraints();
 
-	step = "GPIO software node";
-	ret = software_node_register(&as9888_sim_gpio_node);
+	step = "software nodes";
+	ret = software_node_register_node_group(as9888_sim_nodes);
 	if (ret)
 		goto err_free;
-	step = "device software node";
-	ret = software_node_register(&as9888_sim_dev_node);
-	if (ret) {
-		software_node_unregister(&as9888_sim_gpio_node);
-		goto err_free;
-	}
-	ret = software_node_register(&as9888_sim_bad_node);
-	if (ret) {
-		software_node_unregister(&as9888_sim_dev_node);
-		software_node_unregister(&as9888_sim_gpio_node);
-		goto err_free;
-	}
+	fwnode_init(&s->board_fwnode, &as9888_sim_board_ops);
+	s->board_fwnode.secondary = software_node_fwnode(&as9888_sim_int2_node);
 	init_irq_work(&s->lvl_work, as9888_sim_lvl_work);
 
 	step = "platform device";
@@ -1522,9 +1620,7 @@ err_domain:
 err_pdev:
 	platform_device_unregister(s->pdev);
 err_node:
-	software_node_unregister(&as9888_sim_bad_node);
-	software_node_unregister(&as9888_sim_dev_node);
-	software_node_unregister(&as9888_sim_gpio_node);
+	software_node_unregister_node_group(as9888_sim_nodes);
 err_free:
 	hrtimer_cancel(&s->timer);
 	kfree(s->unit_text);
@@ -1559,9 +1655,7 @@ static void __exit as9888_sim_exit(void)
 		irq_dispose_mapping(irq_find_mapping(s->lvl_domain, 0));
 	irq_domain_remove(s->lvl_domain);
 	platform_device_unregister(s->pdev);
-	software_node_unregister(&as9888_sim_bad_node);
-	software_node_unregister(&as9888_sim_dev_node);
-	software_node_unregister(&as9888_sim_gpio_node);
+	software_node_unregister_node_group(as9888_sim_nodes);
 	kfree(s->unit_text);
 	kfree(s);
 }

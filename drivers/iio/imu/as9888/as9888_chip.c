@@ -255,9 +255,11 @@ int as9888_read_sample(struct as9888_chip *chip, struct as9888_raw_sample *s)
  * @s: the sample
  * @ts: timestamp of the end of the measurement
  *
- * With INT1 wired, wait for its edge. Without it, sleep for the duration
- * of the measurement and read the sample: a sample that is not ready yet
- * (ST1.DRDY clear) sends the driver polling ST1 until the timeout.
+ * With the data-ready interrupt wired, wait for its edge; when none came
+ * by the timeout, ST1.DRDY decides, since a busy system may run the
+ * handler late. Without it, sleep for the duration of the measurement and
+ * read the sample: a sample that is not ready yet (ST1.DRDY clear) sends
+ * the driver polling ST1 until the timeout.
  *
  * Return: 0 or a negative error number, -ETIMEDOUT when the measurement
  * did not complete in time.
@@ -271,14 +273,30 @@ static int as9888_wait_sample(struct as9888_chip *chip,
 	int ret;
 
 	if (chip->irq) {
-		if (!wait_for_completion_timeout(&chip->drdy,
-						 usecs_to_jiffies(timeout_us)))
+		if (wait_for_completion_timeout(&chip->drdy,
+						usecs_to_jiffies(timeout_us))) {
+			*ts = chip->drdy_ts[id];
+			chip->pd_since = chip->drdy_time;
+
+			return as9888_read_sample(chip, s);
+		}
+
+		ret = regmap_read(chip->regmap, AS9888_REG_ST1, &st1);
+		if (ret)
+			return ret;
+		if (!FIELD_GET(AS9888_ST1_DRDY_MSK, st1))
 			return -ETIMEDOUT;
 
-		*ts = chip->drdy_ts[id];
-		chip->pd_since = chip->drdy_time;
+		dev_dbg(chip->dev, "%s edge late, the sample is ready\n",
+			chip->int_pin->name);
+		ret = as9888_read_sample(chip, s);
+		if (ret)
+			return ret;
 
-		return as9888_read_sample(chip, s);
+		*ts = iio_get_time_ns(chip->iio[id]);
+		chip->pd_since = ktime_get();
+
+		return 0;
 	}
 
 	fsleep(t_us);

@@ -215,8 +215,8 @@ static void as9888_trig_watchdog(struct work_struct *work)
 			return;
 		}
 		dev_warn_ratelimited(chip->dev,
-				     "data-ready trigger: no INT1 edge %u ms after a sample started, restarting\n",
-				     AS9888_TRIG_WD_MS);
+				     "data-ready trigger: no %s edge %u ms after a sample started, restarting\n",
+				     chip->int_pin->name, AS9888_TRIG_WD_MS);
 		as9888_power_down(chip);
 		as9888_trig_gap(chip);
 	} else if (!chip->trig_retry) {
