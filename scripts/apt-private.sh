@@ -19,27 +19,28 @@ apt_mirror() {
 		"Release: $codename" "Target-Of: deb" 2>/dev/null | awk 'NF' | head -n1
 }
 
-# apt_private DIR SUITE TYPE [WHO]: DIR/sources.list with one line "TYPE
-# [signed-by=<Debian keyring>] <mirror> SUITE main" (TYPE "deb-src", or
-# "deb" for amd64 binary packages), DIR/lists and DIR/cache; sets APT_OPTS
-# (the options that make apt-get and apt-cache use them) and MIRROR. WHO
-# names the user in the list's comment. The caller runs apt-get update.
+# apt_private DIR SUITE TYPES [WHO]: DIR/sources.list with a line "TYPE
+# [signed-by=<Debian keyring>] <mirror> SUITE main" for each of TYPES
+# ("deb-src"; "deb": amd64 binary packages), DIR/lists and DIR/cache; sets
+# APT_OPTS (the options that make apt-get and apt-cache use them) and
+# MIRROR. WHO names the user in the list's comment. The caller runs
+# apt-get update.
 APT_OPTS=()
 apt_private() {
-	local dir="$1" suite="$2" type="$3" who="${4:-$0}" mirror opts
+	local dir="$1" suite="$2" types="$3" who="${4:-$0}" mirror type opts
 	local kr=/usr/share/keyrings/debian-archive-keyring.gpg
 	mirror=$(apt_mirror) || true
 	[ -n "$mirror" ] ||
 		die "could not find the Debian mirror of this release in /etc/apt/sources.list(.d)"
 	mirror=${mirror%/}
 	[ -r "$kr" ] || die "missing $kr (package debian-archive-keyring)"
-	opts="signed-by=$kr"
-	[ "$type" != deb ] || opts="arch=amd64 $opts"
 	mkdir -p "$dir/lists/partial" "$dir/cache/archives/partial"
-	cat >"$dir/sources.list.new" <<-EOF
-		# Private list used by $who only (never by the system's apt).
-		$type [$opts] $mirror $suite main
-	EOF
+	echo "# Private list used by $who only (never by the system's apt)." >"$dir/sources.list.new"
+	for type in $types; do
+		opts="signed-by=$kr"
+		[ "$type" != deb ] || opts="arch=amd64 $opts"
+		echo "$type [$opts] $mirror $suite main" >>"$dir/sources.list.new"
+	done
 	mv "$dir/sources.list.new" "$dir/sources.list"
 	APT_OPTS=(-q
 		-o "Dir::Etc::SourceList=$dir/sources.list"
