@@ -30,6 +30,9 @@ PIDS=""
 # tx PROGRAM ARGS...: a trixie program on trixie's loader and libraries only
 tx() { _tx_p=$1; shift; $TX/lib64/ld-linux-x86-64.so.2 --library-path $TXLIB --argv0 "$_tx_p" "$TX$_tx_p" "$@"; }
 
+# (loaded by 10-probe in a full run)
+load_sim
+load_driver
 set_unit "temperature = 25" "noise = 0.5" "seed = 11"
 wait_dev 5
 sed 's/^/# client: trixie: /' /tests/clients-trixie.txt
@@ -68,7 +71,8 @@ check "polkit lets root claim a sensor (pkcheck net.hadess.SensorProxy.claim-sen
 	tx /usr/bin/pkcheck --action-id net.hadess.SensorProxy.claim-sensor --process $$
 
 # before the service: the buffer off, the driver's own trigger set
-TRIG=$(dr_trig)
+# the chip's data-ready trigger (lib.sh: dr_trig)
+TRIG=as9888-dev${DEV##*iio:device}
 eq "before iio-sensor-proxy: the accel buffer is off" "$(cat $DEV/buffer/enable)" 0
 eq "before iio-sensor-proxy: current_trigger is the driver's default, $TRIG" \
 	"$(cat $DEV/trigger/current_trigger)" "$TRIG"

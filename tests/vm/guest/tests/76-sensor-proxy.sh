@@ -14,6 +14,9 @@ mkdir -p $O /run/udev /run/dbus
 # Processes started here, stopped at the end whatever happens (sp_stop)
 PIDS=""
 
+# (loaded by 10-probe in a full run)
+load_sim
+load_driver
 set_unit "temperature = 25" "noise = 0.5" "seed = 11"
 wait_dev 5
 sed 's/^/# client: /' /tests/clients.txt
