@@ -27,8 +27,14 @@ TX=/opt/trixie
 TXLIB=$TX/usr/lib/x86_64-linux-gnu
 mkdir -p $O /run/udev/rules.d /run/dbus
 PIDS=""
-# tx PROGRAM ARGS...: a trixie program on trixie's loader and libraries only
-tx() { _tx_p=$1; shift; $TX/lib64/ld-linux-x86-64.so.2 --library-path $TXLIB --argv0 "$_tx_p" "$TX$_tx_p" "$@"; }
+# tx_exec PROGRAM ARGS...: a trixie program on trixie's loader and libraries
+# only, in place of the shell that calls it: "(tx_exec ...) &" makes $! the
+# program's own pid; tx PROGRAM ARGS...: the same in the foreground
+tx_exec() {
+	_tx_p=$1; shift
+	exec $TX/lib64/ld-linux-x86-64.so.2 --library-path $TXLIB --argv0 "$_tx_p" "$TX$_tx_p" "$@"
+}
+tx() { (tx_exec "$@"); }
 
 # (loaded by 10-probe in a full run)
 load_sim
@@ -58,7 +64,7 @@ polkit.addRule(function(action, subject) {
 		return polkit.Result.YES;
 });
 RULES
-tx /usr/lib/polkit-1/polkitd --log-level=debug > $O/polkitd.log 2>&1 &
+(tx_exec /usr/lib/polkit-1/polkitd --log-level=debug) > $O/polkitd.log 2>&1 &
 PIDS="$PIDS $!"
 _i=0
 while [ $_i -lt 600 ] && ! grep -q 'Acquired the name org.freedesktop.PolicyKit1' $O/polkitd.log; do
@@ -80,11 +86,11 @@ G0=$(stat_get chip_magn_measurements)
 diag "sampling_frequency before: $(cat $DEV/sampling_frequency 2>&1)"
 
 # as its unit runs it (ExecStart=/usr/libexec/iio-sensor-proxy), -v: debug
-tx /usr/libexec/iio-sensor-proxy -v > $O/isp.log 2>&1 &
+(tx_exec /usr/libexec/iio-sensor-proxy -v) > $O/isp.log 2>&1 &
 ISP=$!
 PIDS="$PIDS $ISP"
 SEEN=0
-tx /usr/bin/monitor-sensor > $O/ms.out 2>&1 &
+(tx_exec /usr/bin/monitor-sensor) > $O/ms.out 2>&1 &
 MS=$!
 PIDS="$PIDS $MS"
 sp_client
@@ -98,9 +104,11 @@ grep -q '^=== Has accelerometer' $O/ms.out || {
 # what it runs on: trixie's loader and libraries, nothing of bookworm's
 check "iio-sensor-proxy 3.7 runs (its version line)" grep -q 'Starting iio-sensor-proxy version 3\.7' $O/isp.log
 awk '$6 ~ /\.so/ { print $6 }' /proc/$ISP/maps 2>/dev/null | sort -u > $O/maps
+diag "iio-sensor-proxy (pid $ISP) maps $(wc -l < $O/maps) shared objects"
 check "iio-sensor-proxy maps trixie's libc and GLib" \
 	sh -c "grep -q '^$TXLIB/libc.so.6' $O/maps && grep -q '^$TXLIB/libglib-2.0.so.0' $O/maps"
-eq "iio-sensor-proxy maps no library from outside /opt/trixie" "$(grep -v "^$TX/" $O/maps)" ""
+check "iio-sensor-proxy maps no library from outside /opt/trixie" \
+	sh -c "test -s $O/maps && ! grep -v '^$TX/' $O/maps"
 
 # which driver it chose, and why
 A=$(readlink -f $DEV)
