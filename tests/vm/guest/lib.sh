@@ -422,6 +422,13 @@ wait_runtime() {
 # The test sets O (its output directory) and PIDS (the processes it starts,
 # which sp_stop stops); monitor-sensor writes $O/ms.out, iio-sensor-proxy
 # $O/isp.log.
+# sp_diag NAME: stdin as diagnostics "# NAME: ...", GLib's message prefix
+# "** (prog:pid): DEBUG: 11:21:05.548: " shortened to "DEBUG " (the host
+# takes "BUG:" in the serial log for a kernel splat)
+sp_diag() {
+	sed -e 's/^\*\* ([^)]*): \([A-Za-z-]*\)[ *]*: [0-9:.]*: /\1 /' \
+		-e 's/^\([A-Za-z-]*\)[ *]*: [0-9:.]*: /\1 /' -e "s/^/# $1: /"
+}
 # sp_stop: stop PIDS, udevd and the system bus, and forget their state
 sp_stop() {
 	for _sp_p in $PIDS; do kill $_sp_p 2>/dev/null; done
@@ -512,7 +519,7 @@ sp_postures() {
 			else
 				nok "$_sp_c degC: device $_sp_name (chip up $(sp_up_for $_sp_v)): monitor-sensor says $_sp_name" \
 					"saw: $(tail -n 3 $O/ms.out | tr '\n' '|'); raw now $(cat $DEV/in_accel_x_raw $DEV/in_accel_y_raw $DEV/in_accel_z_raw | tr '\n' ' ')"
-				grep -e "Accel read" -e "quirk applied" $O/isp.log | tail -n 2 | sed 's/^/# isp: /'
+				grep -e "Accel read" -e "quirk applied" $O/isp.log | tail -n 2 | sp_diag isp
 				SEEN=$(wc -l < $O/ms.out)
 			fi
 		done < $O/steps

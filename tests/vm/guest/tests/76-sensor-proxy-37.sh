@@ -72,7 +72,7 @@ while [ $_i -lt 600 ] && ! grep -q 'Acquired the name org.freedesktop.PolicyKit1
 done
 check "polkitd (trixie's) owns org.freedesktop.PolicyKit1" \
 	grep -q 'Acquired the name org.freedesktop.PolicyKit1' $O/polkitd.log
-grep -q 'Acquired the name' $O/polkitd.log || sed 's/^/# polkitd: /' $O/polkitd.log | tail -n 10
+grep -q 'Acquired the name' $O/polkitd.log || tail -n 10 $O/polkitd.log | sp_diag polkitd
 check "polkit lets root claim a sensor (pkcheck net.hadess.SensorProxy.claim-sensor)" \
 	tx /usr/bin/pkcheck --action-id net.hadess.SensorProxy.claim-sensor --process $$
 
@@ -96,9 +96,9 @@ PIDS="$PIDS $MS"
 sp_client
 sed 's/^/# monitor-sensor: /' $O/ms.out
 grep -q '^=== Has accelerometer' $O/ms.out || {
-	sed 's/^/# dbus: /' $O/dbus.err
-	sed 's/^/# polkitd: /' $O/polkitd.log | tail -n 10
-	sed 's/^/# isp: /' $O/isp.log | tail -n 30
+	sp_diag dbus < $O/dbus.err
+	tail -n 10 $O/polkitd.log | sp_diag polkitd
+	tail -n 30 $O/isp.log | sp_diag isp
 }
 
 # what it runs on: trixie's loader and libraries, nothing of bookworm's
@@ -112,7 +112,7 @@ check "iio-sensor-proxy maps no library from outside /opt/trixie" \
 
 # which driver it chose, and why
 A=$(readlink -f $DEV)
-grep -e 'trigger' -e 'Found' -e 'Buffer' -e 'ring buffer' $O/isp.log | sort -u | sed 's/^/# isp: /'
+grep -e 'trigger' -e 'Found' -e 'Buffer' -e 'ring buffer' $O/isp.log | sp_diag isp
 check "3.7 finds no trigger named as9888-accel-dev<N> or as9888-accel-trigger (it says so)" \
 	grep -q "Could not find trigger name associated with $A\$" $O/isp.log
 check "3.7 found the accel device as an IIO buffer accelerometer" \

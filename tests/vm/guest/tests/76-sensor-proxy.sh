@@ -44,7 +44,7 @@ eq "iio-sensor-proxy found no other accelerometer (not the magn device)" \
 	"$(echo "$F" | grep -v "/${DEV##*/}\$" | grep .)" ""
 sed 's/^/# monitor-sensor: /' $O/ms.out
 grep -q '^=== Has accelerometer' $O/ms.out ||
-	{ sed 's/^/# dbus: /' $O/dbus.err; sed 's/^/# isp: /' $O/isp.log | tail -n 20; }
+	{ sp_diag dbus < $O/dbus.err; tail -n 20 $O/isp.log | sp_diag isp; }
 
 # without the service and its client there is nothing to step through
 grep -q '^=== Has accelerometer' $O/ms.out || { sp_stop; return 0 2>/dev/null || exit 0; }
