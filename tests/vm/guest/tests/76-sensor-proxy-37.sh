@@ -21,7 +21,9 @@
 # a client holds the accelerometer the buffer stays on and the last scan is
 # read every 700 ms; the last client's release turns the buffer off, the
 # service's exit turns the scan elements off. All of that is asserted here,
-# and the same orientation steps as 76-sensor-proxy (sp_postures).
+# and the same orientation steps as 76-sensor-proxy (sp_postures). Last,
+# with current_trigger cleared, the fallback: the buffer cannot be enabled
+# without a trigger, and 3.7 polls.
 O=/tmp/proxy37
 TX=/opt/trixie
 TXLIB=$TX/usr/lib/x86_64-linux-gnu
@@ -154,6 +156,32 @@ eq "released: current_trigger still $TRIG" "$(cat $DEV/trigger/current_trigger)"
 kill $ISP; wait $ISP 2>/dev/null
 eq "iio-sensor-proxy stopped: every scan element off" "$(cat $SE/*_en | sort -u)" 0
 eq "iio-sensor-proxy stopped: buffer off" "$(cat $DEV/buffer/enable)" 0
+
+# Without a trigger (current_trigger cleared): the IIO core refuses to
+# enable a triggered buffer, so 3.7's buffer driver fails to open the
+# device and 3.7 falls back to its poll driver (in_accel_*_raw every 700 ms)
+echo "" > $DEV/trigger/current_trigger
+eq "no trigger: current_trigger cleared" "$(cat $DEV/trigger/current_trigger)" ""
+sim_up $(sp_up_for 0 -1 0)
+(tx_exec /usr/libexec/iio-sensor-proxy -v) > $O/isp2.log 2>&1 &
+ISP=$!
+PIDS="$PIDS $ISP"
+SEEN=$(wc -l < $O/ms.out)
+(tx_exec /usr/bin/monitor-sensor) >> $O/ms.out 2>&1 &
+MS=$!
+PIDS="$PIDS $MS"
+check "no trigger: monitor-sensor has an accelerometer, in the normal posture" \
+	sp_wait_line '^=== Has accelerometer .orientation: normal'
+grep -e 'trigger' -e 'Found' -e 'buffer' $O/isp2.log | sp_diag isp
+check "no trigger: 3.7 cannot enable the buffer (it says so)" \
+	grep -q "Unable to enable ring buffer for $A\$" $O/isp2.log
+check "no trigger: 3.7 falls back to the poll driver" \
+	grep -q "Found device $A of type accelerometer at IIO Poll accelerometer" $O/isp2.log
+sim_up $(sp_up_for 1 0 0)
+check "no trigger: polled, the device left-up: monitor-sensor says left-up" sp_wait_line 'orientation changed: left-up$'
+eq "no trigger: held, the buffer stays off" "$(cat $DEV/buffer/enable)" 0
+kill $MS $ISP; wait $MS $ISP 2>/dev/null
+echo "$TRIG" > $DEV/trigger/current_trigger
 
 sp_stop
 rm -f /etc/polkit-1/rules.d/60-as9888-bench.rules
