@@ -43,7 +43,7 @@ load_sim
 load_driver
 set_unit "temperature = 25" "noise = 0.5" "seed = 11"
 wait_dev 5
-sed 's/^/# client: trixie: /' /tests/clients-trixie.txt
+diag "client: trixie: $(tr '\n' ' ' < /tests/clients-trixie.txt)"
 for f in lib64/ld-linux-x86-64.so.2 usr/libexec/iio-sensor-proxy usr/bin/monitor-sensor \
 	usr/lib/polkit-1/polkitd usr/lib/udev/rules.d/80-iio-sensor-proxy.rules; do
 	check "trixie's /$f is in /opt/trixie" test -e $TX/$f
