@@ -135,76 +135,13 @@ mark_done() { printf '%s\n' "$2" >"$STAMP_DIR/$1"; }
 
 # --- apt mirror of this machine, and the private unstable apt state --------
 
-# Print the mirror URI the system uses for its main Debian suite (read from
-# /etc/apt/sources.list and sources.list.d, one-line and deb822 formats).
-detect_mirror() {
-	local codename
-	# shellcheck disable=SC1091
-	codename=$(. /etc/os-release && echo "${VERSION_CODENAME:-bookworm}")
-	local files=() f
-	[ -f /etc/apt/sources.list ] && files+=(/etc/apt/sources.list)
-	for f in /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources; do
-		[ -f "$f" ] && files+=("$f")
-	done
-	[ "${#files[@]}" -gt 0 ] || return 1
-	awk -v cn="$codename" '
-		function flush() {
-			if (uris != "" && enabled && types ~ /(^| )deb( |$)/) {
-				n = split(suites, s, " ")
-				for (i = 1; i <= n; i++) if (s[i] == cn) {
-					split(uris, u, " "); print u[1]; found = 1; exit
-				}
-			}
-			uris = ""; suites = ""; types = ""; enabled = 1
-		}
-		BEGIN { enabled = 1 }
-		FNR == 1 { flush() }
-		/^[[:space:]]*#/ { next }
-		FILENAME ~ /\.sources$/ {
-			if ($0 ~ /^[[:space:]]*$/) { flush(); next }
-			line = $0; key = tolower(line); sub(/:.*/, "", key)
-			val = line; sub(/^[^:]*:[[:space:]]*/, "", val)
-			if (key == "uris") uris = val
-			else if (key == "suites") suites = val
-			else if (key == "types") types = val
-			else if (key == "enabled" && tolower(val) == "no") enabled = 0
-			next
-		}
-		$1 == "deb" {
-			i = 2
-			if ($2 ~ /^\[/) { while (i <= NF && $i !~ /\]$/) i++; i++ }
-			if ($(i + 1) == cn) { print $i; found = 1; exit }
-		}
-		END { if (!found) flush() }
-	' "${files[@]}" | head -n1
-}
+# shellcheck source-path=SCRIPTDIR source=apt-private.sh
+. "$AS9888_REPO/scripts/apt-private.sh"
 
-APT_OPTS=()
 apt_priv_setup() {
 	[ "${#APT_OPTS[@]}" -gt 0 ] && return 0
-	local mirror
-	mirror=$(detect_mirror) || true
-	[ -n "$mirror" ] || die "could not find the Debian mirror in /etc/apt/sources.list(.d)"
-	mirror=${mirror%/}
-	mkdir -p "$APT_PRIV/lists/partial" "$APT_PRIV/cache/archives/partial"
-	local kr=/usr/share/keyrings/debian-archive-keyring.gpg
-	cat >"$APT_PRIV/sources.list.new" <<-EOF
-		# Private list used by scripts/kernel-trees.sh only (never by the system apt).
-		deb [signed-by=$kr] $mirror unstable main
-		deb-src [signed-by=$kr] $mirror unstable main
-	EOF
-	mv "$APT_PRIV/sources.list.new" "$APT_PRIV/sources.list"
-	APT_OPTS=(-q
-		-o "Dir::Etc::SourceList=$APT_PRIV/sources.list"
-		-o Dir::Etc::SourceParts=/dev/null
-		-o "Dir::State::Lists=$APT_PRIV/lists"
-		-o "Dir::Cache=$APT_PRIV/cache"
-		-o APT::Sandbox::User=root
-		-o Acquire::Languages=none
-		-o Acquire::IndexTargets::deb::DEP-11::DefaultEnabled=false
-		-o Acquire::IndexTargets::deb::DEP-11-icons::DefaultEnabled=false
-		-o Acquire::IndexTargets::deb::DEP-11-icons-small::DefaultEnabled=false
-		-o Acquire::IndexTargets::deb::DEP-11-icons-hidpi::DefaultEnabled=false)
+	apt_private "$APT_PRIV" unstable "deb deb-src" scripts/kernel-trees.sh
+	local mirror=$MIRROR
 	# Refresh the unstable indexes at most once a day.
 	local today
 	today=$(date +%F)

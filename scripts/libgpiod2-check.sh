@@ -63,43 +63,14 @@ flock 9
 
 # --- step 1: libgpiod 2.x from Debian trixie -----------------------------------
 
-# The archive URI the system's apt uses for the running release (e.g.
-# http://deb.debian.org/debian/), whatever the format of its sources files.
-detect_mirror() {
-	local codename
-	# shellcheck disable=SC1091
-	codename=$(. /etc/os-release && printf '%s' "${VERSION_CODENAME:-}")
-	[ -n "$codename" ] || die "no VERSION_CODENAME in /etc/os-release"
-	# shellcheck disable=SC2016 # $(REPO_URI) is apt's format, not the shell's
-	apt-get indextargets --format '$(REPO_URI)' \
-		"Release: $codename" "Target-Of: deb" 2>/dev/null | awk 'NF' | head -n1
-}
+# shellcheck source-path=SCRIPTDIR source=apt-private.sh
+. "$REPO/scripts/apt-private.sh"
 
-APT_OPTS=()
 apt_priv_setup() {
-	local mirror kr=/usr/share/keyrings/debian-archive-keyring.gpg
-	mirror=$(detect_mirror) || true
-	[ -n "$mirror" ] ||
-		die "could not find the Debian mirror of this release in /etc/apt/sources.list(.d)"
-	mirror=${mirror%/}
-	[ -r "$kr" ] || die "missing $kr (package debian-archive-keyring)"
-	mkdir -p "$APT_PRIV/lists/partial" "$APT_PRIV/cache/archives/partial"
-	cat >"$APT_PRIV/sources.list.new" <<-EOF
-		# Private list used by scripts/libgpiod2-check.sh only (never by the system's apt).
-		deb-src [signed-by=$kr] $mirror $SUITE main
-	EOF
-	mv "$APT_PRIV/sources.list.new" "$APT_PRIV/sources.list"
-	APT_OPTS=(-q
-		-o "Dir::Etc::SourceList=$APT_PRIV/sources.list"
-		-o Dir::Etc::SourceParts=/dev/null
-		-o "Dir::State::Lists=$APT_PRIV/lists"
-		-o "Dir::Cache=$APT_PRIV/cache"
-		-o APT::Sandbox::User=root
-		-o Acquire::Languages=none)
-	log "apt-get update (private $SUITE deb-src list, mirror $mirror)"
+	apt_private "$APT_PRIV" "$SUITE" deb-src scripts/libgpiod2-check.sh
+	log "apt-get update (private $SUITE deb-src list, mirror $MIRROR)"
 	apt-get "${APT_OPTS[@]}" update >"$LOG_DIR/libgpiod2-apt-update.log" 2>&1 ||
 		{ cat "$LOG_DIR/libgpiod2-apt-update.log" >&2; die "apt-get update of the private $SUITE list failed"; }
-	MIRROR=$mirror
 }
 
 # Field of the libgpiod stanza in the private Sources index.

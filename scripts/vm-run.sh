@@ -121,6 +121,95 @@ stage_sensor_proxy() {
 	log "iio-sensor-proxy, udev and the system bus staged in $(since "$t")"
 }
 
+# iio-sensor-proxy 3.7 (issue 12), the version phones ship, from Debian 13
+# (trixie): its buffer driver, and the polkit check of every claim that
+# came with 3.4, so trixie's polkitd as well. The packages come through a
+# private apt configuration in $AS9888_CACHE/apt-trixie-bin (see
+# apt-private.sh; nothing from trixie is installed into the host): the two
+# programs' packages and, following Depends and Pre-Depends, every package
+# of section "libs" they need (libc6, GLib, libgudev, libudev, libpolkit,
+# ...), into $VM_DIR/debs-trixie with the list of names (a warm run reads
+# the list and downloads nothing). They are unpacked into $VM_DIR/trixie-root
+# and checked: trixie's own loader must resolve every library of every
+# program in TRIXIE_PROGS there. Sets TRIXIE_ROOT and TRIXIE_VERSIONS.
+TRIXIE_ROOTS="iio-sensor-proxy polkitd"
+TRIXIE_PROGS="usr/libexec/iio-sensor-proxy usr/bin/monitor-sensor usr/lib/polkit-1/polkitd usr/bin/pkcheck"
+TRIXIE_LIB=usr/lib/x86_64-linux-gnu
+# shellcheck source-path=SCRIPTDIR source=apt-private.sh
+. "$AS9888_REPO/scripts/apt-private.sh"
+# trixie_closure PACKAGE...: the packages and their "libs" dependencies,
+# one a line
+trixie_closure() {
+	local want=("$@") seen=" " next p
+	while [ "${#want[@]}" -gt 0 ]; do
+		for p in "${want[@]}"; do seen="$seen$p "; done
+		next=$(apt-cache "${APT_OPTS[@]}" depends --no-recommends --no-suggests \
+			--no-conflicts --no-breaks --no-replaces --no-enhances "${want[@]}" |
+			awk '$1 ~ /^\|?(Pre)?Depends:$/ && $2 !~ /^</ { print $2 }' | sort -u)
+		want=()
+		for p in $next; do
+			case "$seen" in *" $p "*) continue ;; esac
+			[ "$(apt-cache "${APT_OPTS[@]}" show --no-all-versions "$p" |
+				sed -n 's/^Section: //p')" = libs ] && want+=("$p")
+		done
+	done
+	# shellcheck disable=SC2086 # one word a package
+	printf '%s\n' $seen
+}
+# trixie_libs ROOT PROGRAM: the files of the libraries (and the loader)
+# that trixie's loader in ROOT loads for PROGRAM, one a line; fails if one
+# is not found or is not under ROOT
+trixie_libs() {
+	"$1/$TRIXIE_LIB/ld-linux-x86-64.so.2" --library-path "$1/$TRIXIE_LIB" --list "$2" |
+		awk -v r="$1/" '$2 == "=>" { if (index($3, r) != 1) bad = 1; else print $3 }
+			END { exit bad }'
+}
+stage_trixie() {
+	local debs="$VM_DIR/debs-trixie" r="$VM_DIR/trixie-root" p f t prog n=0 bytes=0
+	local list="$VM_DIR/debs-trixie/packages" need=all pkgs=() d
+	t=$(now)
+	mkdir -p "$debs"
+	if [ "$(head -n1 "$list" 2>/dev/null)" = "roots: $TRIXIE_ROOTS" ]; then
+		need=""
+		for p in $(tail -n +2 "$list"); do
+			compgen -G "$debs/${p}_*.deb" >/dev/null || need="$need $p"
+		done
+	fi
+	if [ -n "$need" ]; then
+		apt_private "$AS9888_CACHE/apt-trixie-bin" trixie deb scripts/vm-run.sh
+		log "trixie packages: apt-get update (private list, mirror $MIRROR)"
+		apt-get "${APT_OPTS[@]}" update >"$LOG_DIR/vm-debs-trixie.log" 2>&1 ||
+			die "apt-get update of the private trixie list failed, see $LOG_DIR/vm-debs-trixie.log"
+		# shellcheck disable=SC2086 # one word a package
+		mapfile -t pkgs < <(trixie_closure $TRIXIE_ROOTS)
+		rm -f "$debs"/*.deb
+		(cd "$debs" && apt-get "${APT_OPTS[@]}" download "${pkgs[@]}") \
+			>>"$LOG_DIR/vm-debs-trixie.log" 2>&1 ||
+			die "apt-get download of trixie's ${pkgs[*]} failed, see $LOG_DIR/vm-debs-trixie.log"
+		{ echo "roots: $TRIXIE_ROOTS"; printf '%s\n' "${pkgs[@]}"; } >"$list"
+	fi
+	rm -rf "$r"
+	mkdir -p "$r"
+	TRIXIE_VERSIONS=""
+	mapfile -t pkgs < <(tail -n +2 "$list")
+	for p in "${pkgs[@]}"; do
+		d=("$debs/${p}"_*.deb)
+		f=${d[-1]}
+		dpkg-deb -x "$f" "$r" || die "cannot unpack $f"
+		TRIXIE_VERSIONS="$TRIXIE_VERSIONS$p=$(dpkg-deb -f "$f" Version)
+"
+		n=$((n + 1))
+		bytes=$((bytes + $(stat -c %s "$f")))
+	done
+	for prog in $TRIXIE_PROGS; do
+		[ -x "$r/$prog" ] || die "no $prog in trixie's packages"
+		trixie_libs "$r" "$r/$prog" >/dev/null ||
+			die "trixie's loader does not find every library of $prog in $r"
+	done
+	TRIXIE_ROOT="$r"
+	log "trixie: $(printf '%s' "$TRIXIE_VERSIONS" | grep -E '^(iio-sensor-proxy|polkitd)=' | tr '\n' ' ')staged from $n packages ($((bytes / 1024)) KiB of .deb) in $(since "$t")"
+}
+
 # The guest's clock. Under TCG the guest's TSC is the host's (QEMU reads
 # the host's TSC for the guest's RDTSC). The guest calibrates it against
 # the emulated PIT, which fails when the host is busy ("tsc: Unable to
@@ -196,14 +285,52 @@ install_sensor_proxy() {
 	copy_with_libs "$root" /usr/bin/dbus-daemon /usr/bin
 	cp /usr/share/dbus-1/system.conf "$root/usr/share/dbus-1/"
 	cp "$r/etc/dbus-1/system.d/net.hadess.SensorProxy.conf" "$root/etc/dbus-1/system.d/"
-	printf 'root:x:0:0:root:/root:/bin/sh\nmessagebus:x:100:101::/nonexistent:/bin/false\n' \
-		>"$root/etc/passwd"
-	printf 'root:x:0:\nmessagebus:x:101:\n' >"$root/etc/group"
+	# polkitd (trixie's, 76-sensor-proxy-37) runs as polkitd
+	printf '%s\n' root:x:0:0:root:/root:/bin/sh messagebus:x:100:101::/nonexistent:/bin/false \
+		polkitd:x:996:996::/nonexistent:/bin/false >"$root/etc/passwd"
+	printf '%s\n' root:x:0: messagebus:x:101: polkitd:x:996: >"$root/etc/group"
 	echo 4f0b1a3c9e7d4b2a8c6e5f1d2a3b4c5d >"$root/etc/machine-id"
 	# GLib's default system bus address is under /var/run, as on Debian
 	mkdir -p "$root/var"
 	ln -sfn /run "$root/var/run"
 	printf '%s' "$PROXY_VERSIONS" >"$root/tests/clients.txt"
+}
+
+# The trixie programs in /opt/trixie of the initramfs, each with the
+# libraries that trixie's loader resolves for it (in /opt/trixie/usr/lib/
+# x86_64-linux-gnu; the loader also as /opt/trixie/lib64/ld-linux-x86-64.so.2,
+# merged /usr as in trixie), so that nothing of bookworm's is loaded and
+# nothing of bookworm's is replaced. Also trixie's udev rule, its D-Bus
+# policies with a system bus configuration that includes only them (the
+# host's system.conf without /etc/dbus-1/system.d, where 3.0's policy is),
+# and polkit's actions and rules (polkitd reads /usr/share/polkit-1 and
+# /etc/polkit-1, links to the ones under /opt/trixie).
+install_trixie() {
+	local root="$1" r="$TRIXIE_ROOT" o="$1/opt/trixie" prog lib f
+	mkdir -p "$o/$TRIXIE_LIB" "$o/usr/lib64" "$o/etc/polkit-1/rules.d" "$root/etc"
+	for prog in $TRIXIE_PROGS; do
+		mkdir -p "$o/$(dirname "$prog")"
+		cp "$r/$prog" "$o/$prog"
+		for lib in $(trixie_libs "$r" "$r/$prog"); do
+			cp -L "$lib" "$o/$TRIXIE_LIB/${lib##*/}"
+		done
+	done
+	ln -sf "../lib/x86_64-linux-gnu/ld-linux-x86-64.so.2" "$o/usr/lib64/ld-linux-x86-64.so.2"
+	ln -sfn usr/lib64 "$o/lib64"
+	for f in usr/lib/udev/rules.d/80-iio-sensor-proxy.rules \
+		usr/share/dbus-1/system.d/net.hadess.SensorProxy.conf \
+		usr/share/dbus-1/system.d/org.freedesktop.PolicyKit1.conf \
+		usr/share/polkit-1/actions/net.hadess.SensorProxy.policy \
+		usr/share/polkit-1/rules.d/50-default.rules; do
+		mkdir -p "$o/$(dirname "$f")"
+		cp "$r/$f" "$o/$f"
+	done
+	grep -v '<includedir>/etc/dbus-1/system.d</includedir>' /usr/share/dbus-1/system.conf \
+		>"$o/usr/share/dbus-1/system.conf"
+	mkdir -p "$root/usr/share"
+	ln -sfn /opt/trixie/usr/share/polkit-1 "$root/usr/share/polkit-1"
+	ln -sfn /opt/trixie/etc/polkit-1 "$root/etc/polkit-1"
+	printf '%s' "$TRIXIE_VERSIONS" >"$root/tests/clients-trixie.txt"
 }
 
 pack_initramfs() {
@@ -222,6 +349,7 @@ pack_initramfs() {
 		copy_with_libs "$root" "/usr/bin/$a"
 	done
 	install_sensor_proxy "$root"
+	install_trixie "$root"
 	cp "$VM_DIR/mod-$k/ko/"*.ko "$root/lib/modules/as9888/"
 	cp "$GUEST/init" "$root/init"
 	cp "$GUEST/lib.sh" "$GUEST/run-all.sh" "$root/tests/"
@@ -313,6 +441,7 @@ run_one() {
 build_daemon
 build_tools_iio
 stage_sensor_proxy
+stage_trixie
 guest_clock
 for k in "${WANT[@]}"; do
 	"$AS9888_REPO/scripts/vm-kernel.sh" "$k"

@@ -416,3 +416,117 @@ wait_runtime() {
 	diag "runtime_status $(cat "$(pm_dir)/runtime_status"), waited for $1"
 	return 1
 }
+
+# --- iio-sensor-proxy (76-sensor-proxy: Debian 12's 3.0; 76-sensor-proxy-37:
+# Debian 13's 3.7) ---------------------------------------------------------------
+# The test sets O (its output directory) and PIDS (the processes it starts,
+# which sp_stop stops); monitor-sensor writes $O/ms.out, iio-sensor-proxy
+# $O/isp.log.
+# sp_diag NAME: stdin as diagnostics "# NAME: ...", GLib's message prefix
+# "** (prog:pid): DEBUG: 11:21:05.548: " shortened to "DEBUG " (the host
+# takes "BUG:" in the serial log for a kernel splat)
+sp_diag() {
+	sed -e 's/^\*\* ([^)]*): \([A-Za-z-]*\)[ *]*: [0-9:.]*: /\1 /' \
+		-e 's/^\([A-Za-z-]*\)[ *]*: [0-9:.]*: /\1 /' -e "s/^/# $1: /"
+}
+# sp_stop: stop PIDS, udevd and the system bus, and forget their state
+sp_stop() {
+	for _sp_p in $PIDS; do kill $_sp_p 2>/dev/null; done
+	for _sp_p in $PIDS; do wait $_sp_p 2>/dev/null; done
+	PIDS=""
+	killall systemd-udevd dbus-daemon 2>/dev/null
+	rm -rf /run/dbus/* /run/udev/*
+}
+# sp_udev: systemd-udevd as the system runs it, the coldplug of the iio
+# devices, and the checks of what the iio-sensor-proxy rule in force made
+# of the accel device (as9888-accel: tagged iio-poll-accel and
+# iio-buffer-accel, systemd asked for the service) and of the magn device
+# (as9888-magn: untagged)
+sp_udev() {
+	/lib/systemd/systemd-udevd --daemon 2>$O/udevd.err
+	udevadm trigger --action=add --subsystem-match=iio
+	udevadm settle --timeout=60
+	udevadm info -q property -p "${DEV#/sys}" > $O/props 2>&1
+	_sp_t=$(sed -n 's/^IIO_SENSOR_PROXY_TYPE=//p' $O/props)
+	diag "udev: as9888-accel: IIO_SENSOR_PROXY_TYPE=$_sp_t"
+	check "udev tags the accel device iio-poll-accel (80-iio-sensor-proxy.rules)" \
+		sh -c "echo '$_sp_t' | grep -qw iio-poll-accel"
+	check "udev tags the accel device iio-buffer-accel" sh -c "echo '$_sp_t' | grep -qw iio-buffer-accel"
+	check "udev: no compass or light tag on the accel device" \
+		sh -c "! echo '$_sp_t' | grep -q -e compass -e als"
+	check "udev asks systemd for iio-sensor-proxy.service" \
+		grep -q '^SYSTEMD_WANTS=iio-sensor-proxy.service' $O/props
+	udevadm info -q property -p "${MDEV#/sys}" > $O/mprops 2>&1
+	_sp_t=$(sed -n 's/^IIO_SENSOR_PROXY_TYPE=//p' $O/mprops)
+	diag "udev: as9888-magn: IIO_SENSOR_PROXY_TYPE=$_sp_t"
+	check "udev knows the magn device" grep -q "^DEVPATH=.*/${MDEV##*/}\$" $O/mprops
+	check "udev: the magn device is not tagged as an accelerometer" \
+		sh -c "! echo '$_sp_t' | grep -q accel"
+	check "udev: the magn device has no compass or light tag either" \
+		sh -c "! echo '$_sp_t' | grep -q -e compass -e als"
+}
+# sp_wait_line PATTERN: until monitor-sensor has printed a line matching it
+# after the first $SEEN lines (60 s: a stall); sets SEEN to that line's
+# number
+SEEN=0
+sp_wait_line() {
+	_sp_i=0
+	while [ $_sp_i -lt 600 ]; do
+		_sp_w=$(awk -v from=$SEEN -v pat="$1" 'NR > from && $0 ~ pat { print NR; exit }' $O/ms.out)
+		[ -n "$_sp_w" ] && { SEEN=$_sp_w; return 0; }
+		sleep 0.1; _sp_i=$((_sp_i + 1))
+	done
+	return 1
+}
+# sp_client: monitor-sensor's first lines: the service, an accelerometer,
+# no light sensor, no compass (the magnetometer has no tilt-compensated
+# heading channel)
+sp_client() {
+	check "monitor-sensor finds iio-sensor-proxy" sp_wait_line '^\+\+\+ iio-sensor-proxy appeared'
+	check "it has an accelerometer" sp_wait_line '^=== Has accelerometer'
+	check "it has no ambient light sensor" grep -q '^=== No ambient light sensor' $O/ms.out
+	check "it has no compass (the magnetometer has no tilt-compensated heading channel)" \
+		sh -c "! grep -q -e '^=== Has compass' -e '^+++ Compass appeared' $O/ms.out"
+}
+# sp_up_for X Y Z: the posture ("up": the direction gravity pushes the
+# chip, as its accelerometer reads it) that puts the device, through the
+# mount matrix M (device = M x chip, from the driver), in the screen
+# posture whose device-frame reading is X Y Z: chip = M^T V
+sp_up_for() {
+	echo "$(cat $DEV/in_accel_mount_matrix); $*" | tr ',;' '  ' | awk '{ for (i = 1; i <= 3; i++)
+		printf "%d%s", $i * $10 + $(i + 3) * $11 + $(i + 6) * $12, i < 3 ? " " : "\n" }'
+}
+# sp_postures: at -20, 25 and 70 degC (set live) the unit is stepped
+# through the four screen postures and flat; each "Accelerometer
+# orientation changed" line must name the orientation worked out here from
+# the mount matrix with iio-sensor-proxy's rule, on the device frame, whose
+# readings it takes in the Windows convention (the vector points where
+# gravity pulls: -1 g on Y when the device stands in its normal posture;
+# this driver, as IIO accelerometers do, reads +1 g on the axis that points
+# up, so a board's mount matrix carries the sign, see README): X beyond 35
+# degrees from the screen plane: right-up (X reads -g) or left-up; else Y
+# beyond 35 degrees: normal (Y reads -g) or bottom-up; else (flat) no
+# change. A line has 60 s to come.
+sp_postures() {
+	diag "mount matrix: $(cat $DEV/in_accel_mount_matrix)"
+	printf '%s\n' "normal:0 -1 0" "left-up:1 0 0" "bottom-up:0 1 0" "right-up:-1 0 0" > $O/steps
+	for _sp_c in -20 25 70; do
+		sim_temp $_sp_c
+		while IFS=: read _sp_name _sp_v; do
+			sim_up $(sp_up_for $_sp_v)
+			if sp_wait_line "orientation changed: $_sp_name\$"; then
+				ok "$_sp_c degC: device $_sp_name (chip up $(sp_up_for $_sp_v)): monitor-sensor says $_sp_name"
+			else
+				nok "$_sp_c degC: device $_sp_name (chip up $(sp_up_for $_sp_v)): monitor-sensor says $_sp_name" \
+					"saw: $(tail -n 3 $O/ms.out | tr '\n' '|'); raw now $(cat $DEV/in_accel_x_raw $DEV/in_accel_y_raw $DEV/in_accel_z_raw | tr '\n' ' ')"
+				grep -e "Accel read" -e "quirk applied" $O/isp.log | tail -n 2 | sp_diag isp
+				SEEN=$(wc -l < $O/ms.out)
+			fi
+		done < $O/steps
+		# flat: no orientation change; the last one stays
+		sim_up $(sp_up_for 0 0 -1)
+		sleep 3
+		eq "$_sp_c degC: flat: no orientation change (right-up stays)" \
+			"$(awk -v from=$SEEN 'NR > from && /orientation changed/' $O/ms.out)" ""
+	done
+}
