@@ -74,6 +74,12 @@ static int chip_poll_drdy(struct chip *c, uint64_t deadline, bool *ready)
 
 	*ready = false;
 	for (;;) {
+		/*
+		 * The time before the read: a read that started after the
+		 * deadline is the last one, whatever delayed us since
+		 */
+		bool last = transport_now_ns(t) >= deadline;
+
 		ret = transport_read_reg(t, AS9888_REG_ST1, &st1);
 		if (ret)
 			return ret;
@@ -81,7 +87,7 @@ static int chip_poll_drdy(struct chip *c, uint64_t deadline, bool *ready)
 			*ready = true;
 			return 0;
 		}
-		if (transport_now_ns(t) >= deadline)
+		if (last)
 			return 0;
 		transport_sleep_ns(t, CHIP_POLL_INTERVAL_US * NS_PER_US);
 	}

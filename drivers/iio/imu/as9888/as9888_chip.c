@@ -57,6 +57,11 @@
 #define AS9888_MEAS_MARGIN_US		2000
 #define AS9888_MEAS_TIMEOUT_US(t)	((t) * 3 / 2 + AS9888_MEAS_MARGIN_US)
 /*
+ * How much longer a data-ready edge is waited for when the sample is
+ * already ready: far beyond the latency of a handler on a busy system
+ */
+#define AS9888_LATE_EDGE_MS		100
+/*
  * RSTN low time: twice t_RSTL, so that a delay that ends a little early
  * (udelay() is calibrated, not measured) still makes a valid pulse
  */
@@ -255,14 +260,16 @@ int as9888_read_sample(struct as9888_chip *chip, struct as9888_raw_sample *s)
  * @s: the sample
  * @ts: timestamp of the end of the measurement
  *
- * With the data-ready interrupt wired, wait for its edge; when none came
- * by the timeout, ST1.DRDY decides, since a busy system may run the
- * handler late. Without it, sleep for the duration of the measurement and
- * read the sample: a sample that is not ready yet (ST1.DRDY clear) sends
- * the driver polling ST1 until the timeout.
+ * With the data-ready interrupt wired, wait for its edge. When none came
+ * by the timeout but ST1.DRDY says the sample is ready, the handler may
+ * just be late on a busy system: give the edge AS9888_LATE_EDGE_MS more.
+ * A ready sample whose edge never comes is a pin fault (an open INT1
+ * line), reported as such. Without the interrupt, sleep for the duration
+ * of the measurement and read the sample: a sample that is not ready yet
+ * (ST1.DRDY clear) sends the driver polling ST1 until the timeout.
  *
- * Return: 0 or a negative error number, -ETIMEDOUT when the measurement
- * did not complete in time.
+ * Return: 0 or a negative error number: -ETIMEDOUT when the measurement
+ * did not complete in time, -EIO when it did but its edge never came.
  */
 static int as9888_wait_sample(struct as9888_chip *chip,
 			      enum as9888_sensor_id id, unsigned int t_us,
@@ -273,30 +280,27 @@ static int as9888_wait_sample(struct as9888_chip *chip,
 	int ret;
 
 	if (chip->irq) {
-		if (wait_for_completion_timeout(&chip->drdy,
-						usecs_to_jiffies(timeout_us))) {
-			*ts = chip->drdy_ts[id];
-			chip->pd_since = chip->drdy_time;
-
-			return as9888_read_sample(chip, s);
+		if (!wait_for_completion_timeout(&chip->drdy,
+						 usecs_to_jiffies(timeout_us))) {
+			ret = regmap_read(chip->regmap, AS9888_REG_ST1, &st1);
+			if (ret)
+				return ret;
+			if (!FIELD_GET(AS9888_ST1_DRDY_MSK, st1))
+				return -ETIMEDOUT;
+			if (!wait_for_completion_timeout(&chip->drdy,
+							 msecs_to_jiffies(AS9888_LATE_EDGE_MS))) {
+				dev_err_ratelimited(chip->dev,
+						    "sample ready but no %s edge: check the %s line\n",
+						    chip->int_pin->name,
+						    chip->int_pin->name);
+				return -EIO;
+			}
 		}
 
-		ret = regmap_read(chip->regmap, AS9888_REG_ST1, &st1);
-		if (ret)
-			return ret;
-		if (!FIELD_GET(AS9888_ST1_DRDY_MSK, st1))
-			return -ETIMEDOUT;
+		*ts = chip->drdy_ts[id];
+		chip->pd_since = chip->drdy_time;
 
-		dev_dbg(chip->dev, "%s edge late, the sample is ready\n",
-			chip->int_pin->name);
-		ret = as9888_read_sample(chip, s);
-		if (ret)
-			return ret;
-
-		*ts = iio_get_time_ns(chip->iio[id]);
-		chip->pd_since = ktime_get();
-
-		return 0;
+		return as9888_read_sample(chip, s);
 	}
 
 	fsleep(t_us);
