@@ -252,6 +252,38 @@ int as9888_read_sample(struct as9888_chip *chip, struct as9888_raw_sample *s)
 	return regmap_bulk_read(chip->regmap, AS9888_REG_ST1, s, sizeof(*s));
 }
 
+/*
+ * Wait for the data-ready edge of a started measurement. When none came by
+ * @timeout_us but ST1.DRDY says the sample is ready, the handler may just
+ * be late on a busy system: give the edge AS9888_LATE_EDGE_MS more. A
+ * ready sample whose edge never comes is a pin fault (an open INT1 line).
+ */
+static int as9888_wait_edge(struct as9888_chip *chip, unsigned int timeout_us)
+{
+	const char *pin = chip->int_pin->name;
+	unsigned int st1;
+	int ret;
+
+	if (wait_for_completion_timeout(&chip->drdy,
+					usecs_to_jiffies(timeout_us)))
+		return 0;
+
+	ret = regmap_read(chip->regmap, AS9888_REG_ST1, &st1);
+	if (ret)
+		return ret;
+	if (!FIELD_GET(AS9888_ST1_DRDY_MSK, st1))
+		return -ETIMEDOUT;
+
+	if (wait_for_completion_timeout(&chip->drdy,
+					msecs_to_jiffies(AS9888_LATE_EDGE_MS)))
+		return 0;
+
+	dev_err_ratelimited(chip->dev,
+			    "sample ready but no %s edge: check the %s line\n",
+			    pin, pin);
+	return -EIO;
+}
+
 /**
  * as9888_wait_sample() - wait for a started measurement and read it
  * @chip: chip state
@@ -260,12 +292,9 @@ int as9888_read_sample(struct as9888_chip *chip, struct as9888_raw_sample *s)
  * @s: the sample
  * @ts: timestamp of the end of the measurement
  *
- * With the data-ready interrupt wired, wait for its edge. When none came
- * by the timeout but ST1.DRDY says the sample is ready, the handler may
- * just be late on a busy system: give the edge AS9888_LATE_EDGE_MS more.
- * A ready sample whose edge never comes is a pin fault (an open INT1
- * line), reported as such. Without the interrupt, sleep for the duration
- * of the measurement and read the sample: a sample that is not ready yet
+ * With the data-ready interrupt wired, wait for its edge
+ * (as9888_wait_edge()). Without it, sleep for the duration of the
+ * measurement and read the sample: a sample that is not ready yet
  * (ST1.DRDY clear) sends the driver polling ST1 until the timeout.
  *
  * Return: 0 or a negative error number: -ETIMEDOUT when the measurement
@@ -280,22 +309,9 @@ static int as9888_wait_sample(struct as9888_chip *chip,
 	int ret;
 
 	if (chip->irq) {
-		if (!wait_for_completion_timeout(&chip->drdy,
-						 usecs_to_jiffies(timeout_us))) {
-			ret = regmap_read(chip->regmap, AS9888_REG_ST1, &st1);
-			if (ret)
-				return ret;
-			if (!FIELD_GET(AS9888_ST1_DRDY_MSK, st1))
-				return -ETIMEDOUT;
-			if (!wait_for_completion_timeout(&chip->drdy,
-							 msecs_to_jiffies(AS9888_LATE_EDGE_MS))) {
-				dev_err_ratelimited(chip->dev,
-						    "sample ready but no %s edge: check the %s line\n",
-						    chip->int_pin->name,
-						    chip->int_pin->name);
-				return -EIO;
-			}
-		}
+		ret = as9888_wait_edge(chip, timeout_us);
+		if (ret)
+			return ret;
 
 		*ts = chip->drdy_ts[id];
 		chip->pd_since = chip->drdy_time;

@@ -233,30 +233,46 @@ check "bad interrupt specifier: no device (probe fails)" pm_absent as9888-accel
 check "bad interrupt specifier: the driver names the interrupt" \
 	sh -c "dmesg | tail -n +$((_n0 + 1)) | grep -q 'cannot get interrupt INT1'"
 
+# pm_rewire WIRING WHAT: re-wire the device; sets ACC and T, checks that
+# it probes with its trigger and reads 1 g, and starts 100 Hz sampling on
+# its trigger, noting the adapter's counters (one read of stats: they move
+# at 100 Hz)
+pm_rewire() {
+	_n1=$(dmesg | wc -l)
+	echo "$1" > $SIM/wiring
+	eq "$2: the adapter's wiring" "$(cat $SIM/wiring)" "$1"
+	ACC=$(pm_dev as9888-accel)
+	check "$2: device probes" test -d "$ACC"
+	T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
+	check "$2: data-ready trigger registered" test -n "$T"
+	near "$2: z raw reads about 1 g" "$(cat $ACC/in_accel_z_raw 2>/dev/null)" 1024 64
+	echo 100 > $ACC/sampling_frequency
+	_st0=$(cat $SIM/stats)
+	pm_buf_on $ACC "$T"
+	check "$2: samples flow on the data-ready trigger" pm_flowing "$2"
+}
+# pm_stat STATS NAME: counter NAME in STATS (a copy of the adapter's stats)
+pm_stat() { echo "$1" | sed -n "s/^$2 //p"; }
+# pm_counted WHAT: 1 s more of sampling, then stop; sets _m (measurements),
+# _i (interrupts) and _s (samples captured) since pm_rewire
+pm_counted() {
+	sleep 1
+	_st1=$(cat $SIM/stats)
+	pm_buf_off $ACC
+	_m=$(($(pm_stat "$_st1" chip_measurements) - $(pm_stat "$_st0" chip_measurements)))
+	_i=$(($(pm_stat "$_st1" irqs) - $(pm_stat "$_st0" irqs)))
+	_s=$(($(wc -c < /tmp/pm-drain) / 16))
+	diag "$1: $_m measurements, $_i interrupts, $_s samples"
+	check "$1: samples captured ($_s)" test "$_s" -ge 10
+}
+
 # INT1 as a level-high interrupt: the driver deasserts it (INT1ST) before
 # it is unmasked again, so about one interrupt per sample, no storm (a
 # line left high fires again each time it is unmasked: thousands a second)
-_n1=$(dmesg | wc -l)
-echo int1-level > $SIM/wiring
-ACC=$(pm_dev as9888-accel)
-check "INT1 level-high: device probes" test -d "$ACC"
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
-check "INT1 level-high: data-ready trigger registered" test -n "$T"
-near "INT1 level-high: z raw reads about 1 g" "$(cat $ACC/in_accel_z_raw 2>/dev/null)" 1024 64
-echo 100 > $ACC/sampling_frequency
-_i0=$(stat_get irqs)
-_m0=$(stat_get chip_measurements)
-pm_buf_on $ACC "$T"
-check "INT1 level-high: samples flow on the data-ready trigger" pm_flowing "INT1 level-high"
-sleep 1
-_i1=$(stat_get irqs)
-_m1=$(stat_get chip_measurements)
-pm_buf_off $ACC
-_s=$(($(wc -c < /tmp/pm-drain) / 16))
-diag "INT1 level-high: $((_m1 - _m0)) measurements, $((_i1 - _i0)) interrupts, $_s samples"
-check "INT1 level-high: samples captured ($_s)" test "$_s" -ge 10
-check "INT1 level-high: no interrupt storm ($((_i1 - _i0)) for $((_m1 - _m0)) measurements)" \
-	test $((_i1 - _i0)) -le $((2 * (_m1 - _m0) + 5))
+pm_rewire int1-level "INT1 level-high"
+pm_counted "INT1 level-high"
+check "INT1 level-high: no interrupt storm ($_i for $_m measurements)" \
+	test $_i -le $((2 * _m + 5))
 eq "INT1 level-high: no driver message" "$(pm_log_since $_n1)" ""
 
 # INT2 alone, the only interrupt the firmware names ("INT2" in
@@ -266,36 +282,16 @@ eq "INT1 level-high: no driver message" "$(pm_log_since $_n1)" ""
 # trigger, and no interrupt at all.
 # pm_reg REG: the chip's register REG ("0x03") as the adapter's regs shows it
 pm_reg() { sed -n "s/^$1 //p" $SIM/regs; }
-_n1=$(dmesg | wc -l)
-echo int2 > $SIM/wiring
-eq "INT2 only: the adapter's wiring" "$(cat $SIM/wiring)" int2
-ACC=$(pm_dev as9888-accel)
-check "INT2 only: device probes" test -d "$ACC"
-T=$(cat /sys/bus/iio/devices/trigger*/name | grep "^as9888-dev" | head -n1)
-check "INT2 only: data-ready trigger registered" test -n "$T"
-near "INT2 only: z raw reads about 1 g" "$(cat $ACC/in_accel_z_raw 2>/dev/null)" 1024 64
-echo 100 > $ACC/sampling_frequency
-_st0=$(cat $SIM/stats)
-pm_buf_on $ACC "$T"
-check "INT2 only: samples flow on the data-ready trigger" pm_flowing "INT2 only"
+pm_rewire int2 "INT2 only"
 _e1=$(pm_reg 0x02)
 _e2=$(pm_reg 0x03)
-sleep 1
-_st1=$(cat $SIM/stats)
-pm_buf_off $ACC
-# both counters from one read of stats: they move at 100 Hz
-_i0=$(echo "$_st0" | sed -n 's/^irqs //p')
-_m0=$(echo "$_st0" | sed -n 's/^chip_measurements //p')
-_i1=$(echo "$_st1" | sed -n 's/^irqs //p')
-_m1=$(echo "$_st1" | sed -n 's/^chip_measurements //p')
-_s=$(($(wc -c < /tmp/pm-drain) / 16))
-diag "INT2 only: INT1EN $_e1, INT2EN $_e2; $((_m1 - _m0)) measurements, $((_i1 - _i0)) interrupts, $_s samples"
+pm_counted "INT2 only"
+diag "INT2 only: INT1EN $_e1, INT2EN $_e2 while sampling"
 eq "INT2 only: INT1EN clear while sampling" "$_e1" 0x00
 check "INT2 only: INT2EN set while sampling ($_e2)" \
 	test -n "$_e2" -a "$_e2" != 0x00
-check "INT2 only: samples captured ($_s)" test "$_s" -ge 10
-check "INT2 only: one interrupt per measurement ($((_i1 - _i0)) for $((_m1 - _m0)))" \
-	test $((_i1 - _i0)) -ge $(((_m1 - _m0) / 2)) -a $((_i1 - _i0)) -le $((_m1 - _m0 + 5))
+check "INT2 only: one interrupt per measurement ($_i for $_m)" \
+	test $_i -ge $((_m / 2)) -a $_i -le $((_m + 5))
 eq "INT2 only: no driver message" "$(pm_log_since $_n1)" ""
 
 echo int1 > $SIM/wiring
