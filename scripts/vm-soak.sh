@@ -12,6 +12,11 @@
 # proves it. Not part of scripts/test.sh (it takes about an hour on two
 # cores); the README names it.
 #
+# AS9888_SOAK_HOGS sets the hog's CPU workers (default: one per core). Set
+# it to 0 for a second soak run at the same time, on its own AS9888_CACHE,
+# beside the first one's hog: the two guests and one hog then share the
+# cores, which loads the machine more than one soak alone.
+#
 # Prints, per run, the bench's own "<k>: N passed, N failed (T s in QEMU)"
 # lines and the wall time of the run, then a summary line
 # "vm-soak: R runs, F failed"; exit status 0 only when every run passed.
@@ -28,7 +33,16 @@ case "$runs" in
 esac
 [ "$runs" -ge 1 ] || die "RUNS must be at least 1"
 
-ensure_pkgs stress-ng
+hogs=${AS9888_SOAK_HOGS:-$(nproc)}
+case "$hogs" in
+'' | *[!0-9]*) die "AS9888_SOAK_HOGS must be a number of CPU workers, not '$hogs'" ;;
+esac
+if [ "$hogs" -gt 0 ]; then
+	ensure_pkgs stress-ng
+	beside="beside stress-ng --cpu $hogs"
+else
+	beside="with no hog of its own (AS9888_SOAK_HOGS=0)"
+fi
 mkdir -p "$LOG_DIR"
 
 hog_pid=
@@ -43,8 +57,10 @@ trap stop_hog EXIT
 failed=0
 for ((r = 1; r <= runs; r++)); do
 	log="$LOG_DIR/vm-soak-$r.log"
-	stress-ng --cpu "$(nproc)" --quiet >/dev/null 2>&1 &
-	hog_pid=$!
+	if [ "$hogs" -gt 0 ]; then
+		stress-ng --cpu "$hogs" --quiet >/dev/null 2>&1 &
+		hog_pid=$!
+	fi
 	t=$(now)
 	if "$AS9888_REPO/scripts/vm-run.sh" "$@" >"$log" 2>&1; then
 		verdict=pass
@@ -53,7 +69,7 @@ for ((r = 1; r <= runs; r++)); do
 		failed=$((failed + 1))
 	fi
 	stop_hog
-	log "run $r of $runs beside stress-ng --cpu $(nproc): $verdict in $(since "$t") (log: $log)"
+	log "run $r of $runs $beside: $verdict in $(since "$t") (log: $log)"
 	grep -E '^(6\.1|7\.2): [0-9]+ passed' "$log" | sed 's/^/  /' || true
 	[ "$verdict" = pass ] || grep -E 'not ok|stall|splat' "$log" | head -n 10 | sed 's/^/  /' || true
 done
