@@ -184,9 +184,9 @@ EOF
 
 # 3: driver
 DRV_FILES=(Kconfig Makefile as9888.h as9888_core.h as9888_regs.h
-	as9888_calib.h as9888_calib.c as9888_chip.c as9888_accel.c
-	as9888_magn.c as9888_trigger.c as9888_i2c.c as9888_spi.c
-	as9888_calib_kunit.c .kunitconfig)
+	as9888_calib.h as9888_calib.c as9888_probe.c as9888_chip.c
+	as9888_accel.c as9888_magn.c as9888_trigger.c as9888_i2c.c
+	as9888_spi.c as9888_calib_kunit.c .kunitconfig)
 for f in "${DRV_FILES[@]}"; do
 	[ -f "$REPO/$DRV_REL/$f" ] || die "missing $DRV_REL/$f"
 	put "$REPO/$DRV_REL/$f" "$DRV_REL/$f"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * ALSEN AS9888 6-axis sensor: 3-axis magnetometer, 3-axis accelerometer and
- * temperature sensor. Chip access and probe, shared by both sensors.
+ * temperature sensor. Chip access, shared by both sensors.
  *
  * The chip has no continuous mode: every sample is one single measurement
  * (MS = 0x01) that ends with data ready (ST1.DRDY, and INT1 when DR1EN is
@@ -13,34 +13,25 @@
  * so that a client of one never makes the chip measure the other: the
  * magnetometer is measured only for the magnetometer device. Both devices
  * share this chip state, its lock and the data-ready trigger
- * (as9888_trigger.c).
+ * (as9888_trigger.c); a measurement of their own waits for the gap between
+ * two samples of the trigger (as9888_wait_gap()).
  *
- * Factory trim comes from an EEPROM that is readable only in EEPROM access
- * mode; it is read once at probe and decoded with the shared calibration
- * arithmetic of as9888_calib.c.
+ * Probe and power management are in as9888_probe.c.
  */
 
 #include <linux/array_size.h>
 #include <linux/bitfield.h>
-#include <linux/bitmap.h>
-#include <linux/bits.h>
 #include <linux/cleanup.h>
 #include <linux/completion.h>
 #include <linux/delay.h>
 #include <linux/device.h>
-#include <linux/err.h>
-#include <linux/gpio/consumer.h>
-#include <linux/interrupt.h>
+#include <linux/jiffies.h>
 #include <linux/ktime.h>
+#include <linux/math.h>
 #include <linux/module.h>
 #include <linux/mutex.h>
-#include <linux/nvmem-provider.h>
-#include <linux/pm.h>
 #include <linux/pm_runtime.h>
-#include <linux/property.h>
 #include <linux/regmap.h>
-#include <linux/regulator/consumer.h>
-#include <linux/string.h>
 #include <linux/time64.h>
 #include <linux/types.h>
 #include <linux/wait.h>
@@ -51,8 +42,6 @@
 
 #include "as9888_core.h"
 
-#define AS9888_DRV_NAME			"as9888"
-
 /* A measurement that has not completed by 1.5 t + margin has failed */
 #define AS9888_MEAS_MARGIN_US		2000
 #define AS9888_MEAS_TIMEOUT_US(t)	((t) * 3 / 2 + AS9888_MEAS_MARGIN_US)
@@ -61,21 +50,13 @@
  * already ready: far beyond the latency of a handler on a busy system
  */
 #define AS9888_LATE_EDGE_MS		100
-/*
- * RSTN low time: twice t_RSTL, so that a delay that ends a little early
- * (udelay() is calibrated, not measured) still makes a valid pulse
- */
-#define AS9888_RSTL_US			(2 * AS9888_T_RSTL_US)
 /* ST1 polling interval when no interrupt is wired */
 #define AS9888_POLL_US			100
-
-#define AS9888_AUTOSUSPEND_MS		2000
-
-#define AS9888_SAMP_FREQ_DEFAULT	100
-
-static const char * const as9888_supply_names[AS9888_SUPPLIES] = {
-	"vdd", "vid",
-};
+/*
+ * How long a synchronous measurement waits for the data-ready trigger's
+ * next gap between two samples, beyond two sampling periods
+ */
+#define AS9888_GAP_WAIT_SLACK_MS	2000
 
 /* Register map */
 
@@ -177,7 +158,7 @@ EXPORT_SYMBOL_NS_GPL(as9888_spi_regmap_config, "IIO_AS9888");
 /* Modes and measurements; all of these run with chip->lock held */
 
 /* Wait until t_PD has passed since the chip entered power-down */
-static void as9888_wait_pd(struct as9888_chip *chip)
+void as9888_wait_pd(struct as9888_chip *chip)
 {
 	s64 left_us = ktime_us_delta(ktime_add_us(chip->pd_since,
 						  AS9888_T_PD_US),
@@ -385,6 +366,62 @@ int as9888_check_magn(const struct as9888_raw_sample *s)
 	return 0;
 }
 
+/*
+ * How long to wait for the data-ready trigger's gap: a sample may keep the
+ * chip for a whole period, and the one after it too when a handler ran late
+ */
+static unsigned long as9888_trig_wait_jiffies(const struct as9888_chip *chip)
+{
+	unsigned int period_ms = DIV_ROUND_UP(MSEC_PER_SEC, chip->samp_freq);
+
+	return msecs_to_jiffies(2 * period_ms + AS9888_GAP_WAIT_SLACK_MS);
+}
+
+/**
+ * as9888_wait_gap() - wait for the gap between two samples of the trigger
+ * @chip: chip state, with chip->lock held; the lock is dropped while
+ *	  waiting
+ *
+ * A waiter is counted in chip->gap_waiters, and the trigger does not start
+ * its next sample while one is counted: the gap is handed over. Without
+ * that, the trigger's thread, which runs at real-time priority and starts
+ * the next sample at once when it is late, would take the chip back
+ * before the woken waiter ever ran.
+ *
+ * Return: 0 with chip->lock held and no measurement of the data-ready
+ * trigger in flight, or -ETIMEDOUT when the trigger's sample did not come
+ * (also with chip->lock held).
+ */
+int as9888_wait_gap(struct as9888_chip *chip)
+{
+	unsigned long left;
+	int ret = 0;
+
+	lockdep_assert_held(&chip->lock);
+
+	if (!chip->trig_busy)
+		return 0;
+
+	left = as9888_trig_wait_jiffies(chip);
+	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters + 1);
+	while (chip->trig_busy) {
+		mutex_unlock(&chip->lock);
+		left = wait_event_timeout(chip->gap_wq,
+					  !READ_ONCE(chip->trig_busy), left);
+		mutex_lock(&chip->lock);
+		if (!left && chip->trig_busy) {
+			dev_err_ratelimited(chip->dev,
+					    "data-ready trigger stalled\n");
+			ret = -ETIMEDOUT;
+			break;
+		}
+	}
+	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters - 1);
+	wake_up_all(&chip->gap_wq);
+
+	return ret;
+}
+
 /**
  * as9888_measure() - run one measurement and read the sample
  * @chip: chip state
@@ -581,497 +618,3 @@ int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
 
 	return ret;
 }
-
-/* Power, reset and the factory trim: step 1 of the application note */
-
-/*
- * Supplies on, then RSTN released: RSTN is held low while the supplies are
- * off (as9888_power_cut()), so every power-up is also a reset pulse of at
- * least t_RSTL. The chip answers t_BOOT after RSTN rises (or after
- * power-on, without a reset GPIO), in power-down.
- */
-static int as9888_power_on(struct as9888_chip *chip)
-{
-	int ret;
-
-	ret = regulator_bulk_enable(ARRAY_SIZE(chip->supplies), chip->supplies);
-	if (ret)
-		return ret;
-
-	if (chip->reset) {
-		fsleep(AS9888_RSTL_US);
-		gpiod_set_value_cansleep(chip->reset, 0);
-	}
-
-	/* The chip NAKs (I2C) or reads 0xff (SPI) until it has booted */
-	fsleep(AS9888_T_BOOT_US);
-	/* It boots into power-down */
-	chip->pd_since = ktime_get();
-
-	return 0;
-}
-
-/*
- * RSTN low, then the supplies off: a logic-high RSTN would feed the
- * unpowered chip through its input protection (as ak8975_power_off()).
- * When the supplies cannot be switched off, RSTN is released again: the
- * chip then needs a register restore (its registers are at their reset
- * values after the pulse).
- */
-static int as9888_power_cut(struct as9888_chip *chip)
-{
-	int ret;
-
-	gpiod_set_value_cansleep(chip->reset, 1);
-
-	ret = regulator_bulk_disable(ARRAY_SIZE(chip->supplies),
-				     chip->supplies);
-	if (ret && chip->reset) {
-		fsleep(AS9888_RSTL_US);
-		gpiod_set_value_cansleep(chip->reset, 0);
-		fsleep(AS9888_T_BOOT_US);
-		chip->pd_since = ktime_get();
-	}
-
-	return ret;
-}
-
-static void as9888_power_off(void *arg)
-{
-	struct as9888_chip *chip = arg;
-
-	if (pm_runtime_status_suspended(chip->dev))
-		return;
-
-	as9888_power_cut(chip);
-	pm_runtime_set_suspended(chip->dev);
-}
-
-/*
- * RSTN is taken asserted before the supplies are switched on, and released
- * by as9888_power_on(): probe starts with a reset pulse, whatever state the
- * chip was left in.
- */
-static int as9888_power_init(struct as9888_chip *chip)
-{
-	struct device *dev = chip->dev;
-	unsigned int i;
-	int ret;
-
-	chip->reset = devm_gpiod_get_optional(dev, "reset", GPIOD_OUT_HIGH);
-	if (IS_ERR(chip->reset))
-		return dev_err_probe(dev, PTR_ERR(chip->reset),
-				     "cannot get reset GPIO\n");
-
-	for (i = 0; i < ARRAY_SIZE(chip->supplies); i++)
-		chip->supplies[i].supply = as9888_supply_names[i];
-
-	ret = devm_regulator_bulk_get(dev, ARRAY_SIZE(chip->supplies),
-				      chip->supplies);
-	if (ret)
-		return dev_err_probe(dev, ret, "cannot get regulators\n");
-
-	ret = as9888_power_on(chip);
-	if (ret)
-		return dev_err_probe(dev, ret, "cannot enable regulators\n");
-
-	/* Runtime PM status tells as9888_power_off() whether power is on */
-	ret = pm_runtime_set_active(dev);
-	if (ret) {
-		as9888_power_cut(chip);
-		return dev_err_probe(dev, ret, "cannot set runtime PM status\n");
-	}
-
-	return devm_add_action_or_reset(dev, as9888_power_off, chip);
-}
-
-/* Steps 1-5..1-29: the whole EEPROM in one burst in EEPROM access mode */
-static int as9888_read_eeprom(struct as9888_chip *chip,
-			      u8 raw[AS9888_EEPROM_LEN])
-{
-	struct device *dev = chip->dev;
-	int ret, ret_pd;
-
-	as9888_wait_pd(chip);
-	ret = regmap_write(chip->regmap, AS9888_REG_MS, AS9888_MS_EEPROM);
-	if (ret)
-		return dev_err_probe(dev, ret, "cannot enter EEPROM mode\n");
-
-	fsleep(AS9888_T_EEP_US);
-	ret = regmap_bulk_read(chip->regmap, AS9888_REG_EEPROM, raw,
-			       AS9888_EEPROM_LEN);
-
-	/* EEPROM access mode is left only by writing power-down */
-	ret_pd = as9888_power_down(chip);
-	if (ret)
-		return dev_err_probe(dev, ret, "cannot read EEPROM\n");
-	if (ret_pd)
-		return dev_err_probe(dev, ret_pd,
-				     "cannot leave EEPROM mode\n");
-
-	return 0;
-}
-
-static int as9888_decode_eeprom(struct as9888_chip *chip,
-				const u8 raw[AS9888_EEPROM_LEN])
-{
-	struct device *dev = chip->dev;
-	unsigned long bits;
-	unsigned int bit;
-	int ret;
-
-	ret = as9888_eeprom_decode(raw, &chip->ee);
-
-	bits = chip->ee.errors;
-	for_each_set_bit(bit, &bits, BITS_PER_TYPE(chip->ee.errors))
-		dev_err(dev, "%s\n", as9888_ee_error_str(BIT(bit)));
-	if (ret)
-		return dev_err_probe(dev, ret, "unusable factory EEPROM %*ph\n",
-				     AS9888_EEPROM_LEN, raw);
-
-	bits = chip->ee.warnings;
-	for_each_set_bit(bit, &bits, BITS_PER_TYPE(chip->ee.warnings))
-		dev_warn(dev, "%s\n", as9888_ee_warning_str(BIT(bit)));
-
-	return 0;
-}
-
-/* Steps 1-30..1-39 and the read-back check of D10 */
-static int as9888_load_trim(struct as9888_chip *chip)
-{
-	const struct as9888_eeprom *ee = &chip->ee;
-	u8 trim[AS9888_TRIM_LEN] = {
-		[AS9888_REG_REF1 - AS9888_REG_REF1] = ee->ref1,
-		[AS9888_REG_REF2 - AS9888_REG_REF1] = ee->ref2,
-		[AS9888_REG_REF3 - AS9888_REG_REF1] = ee->ref3,
-		[AS9888_REG_OSC - AS9888_REG_REF1] = ee->osc,
-	};
-	int axis, ret;
-
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		trim[AS9888_REG_AGA(axis) - AS9888_REG_REF1] = ee->axis[axis].ga;
-		trim[AS9888_REG_ADA(axis) - AS9888_REG_REF1] = ee->axis[axis].da;
-	}
-
-	guard(mutex)(&chip->lock);
-
-	ret = as9888_write_trim(chip, AS9888_REG_REF1, trim, sizeof(trim));
-	if (ret)
-		return dev_err_probe(chip->dev, ret, "cannot load trim\n");
-
-	return 0;
-}
-
-static int as9888_chip_init(struct as9888_chip *chip)
-{
-	u8 raw[AS9888_EEPROM_LEN];
-	unsigned int wia;
-	int ret;
-
-	ret = regmap_read(chip->regmap, AS9888_REG_WIA, &wia);
-	if (ret)
-		return dev_err_probe(chip->dev, ret, "cannot read WIA\n");
-	if (wia != AS9888_WIA_VAL)
-		return dev_err_probe(chip->dev, -ENODEV,
-				     "WIA reads 0x%02x, not an AS9888 (0x%02x)\n",
-				     wia, AS9888_WIA_VAL);
-
-	ret = as9888_read_eeprom(chip, raw);
-	if (ret)
-		return ret;
-
-	ret = as9888_decode_eeprom(chip, raw);
-	if (ret)
-		return ret;
-
-	/* Until userspace loads a level test: the factory's state */
-	chip->cal.t_mdegc = chip->ee.t_rt_mdegc;
-
-	return as9888_load_trim(chip);
-}
-
-/*
- * The EEPROM as an NVMEM device "as9888-eeprom<N>", N the number of the
- * accelerometer's IIO device; reads are served from the copy taken at
- * probe.
- */
-static int as9888_nvmem_read(void *priv, unsigned int offset, void *val,
-			     size_t bytes)
-{
-	struct as9888_chip *chip = priv;
-
-	if (offset >= AS9888_EEPROM_LEN || bytes > AS9888_EEPROM_LEN - offset)
-		return -EINVAL;
-
-	memcpy(val, &chip->ee.raw[offset], bytes);
-
-	return 0;
-}
-
-static int as9888_nvmem_register(struct as9888_chip *chip)
-{
-	struct nvmem_config config = {
-		.dev = chip->dev,
-		.name = AS9888_DRV_NAME "-eeprom",
-		.id = iio_device_id(chip->iio[AS9888_ACCEL]),
-		.owner = THIS_MODULE,
-		.type = NVMEM_TYPE_EEPROM,
-		.read_only = true,
-		.ignore_wp = true,
-		.word_size = 1,
-		.stride = 1,
-		.size = AS9888_EEPROM_LEN,
-		.reg_read = as9888_nvmem_read,
-		.priv = chip,
-	};
-	struct nvmem_device *nvmem;
-
-	if (!IS_ENABLED(CONFIG_NVMEM))
-		return 0;
-
-	nvmem = devm_nvmem_register(chip->dev, &config);
-	if (IS_ERR(nvmem))
-		return dev_err_probe(chip->dev, PTR_ERR(nvmem),
-				     "cannot register EEPROM\n");
-
-	return 0;
-}
-
-static const struct as9888_int_pin as9888_int_pins[] = {
-	{ "INT1", AS9888_REG_INT1EN, AS9888_REG_INT1ST },
-	{ "INT2", AS9888_REG_INT2EN, AS9888_REG_INT2ST },
-};
-
-/*
- * The data-ready interrupt. Without interrupt-names, the device's (first)
- * interrupt is INT1, and no interrupt means ST1 is polled. With
- * interrupt-names, INT1 is taken when it is named, else INT2 (a board that
- * wires INT2 only, as bmi323 does); a named interrupt that cannot be got
- * is a firmware error that fails probe, never a silent fall back to
- * polling.
- */
-static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
-{
-	struct device *dev = chip->dev;
-	struct fwnode_handle *fwnode = dev_fwnode(dev);
-	const struct as9888_int_pin *pin;
-	unsigned int i;
-	int index, irq;
-
-	chip->int_pin = &as9888_int_pins[0];
-	if (!fwnode || !fwnode_property_present(fwnode, "interrupt-names"))
-		return bus_irq > 0 ? bus_irq : 0;
-
-	for (i = 0; i < ARRAY_SIZE(as9888_int_pins); i++) {
-		pin = &as9888_int_pins[i];
-		index = fwnode_property_match_string(fwnode, "interrupt-names",
-						     pin->name);
-		if (index < 0)
-			continue;
-
-		irq = fwnode_irq_get(fwnode, index);
-		if (irq < 0)
-			return dev_err_probe(dev, irq,
-					     "cannot get interrupt %s (interrupt-names entry %d)\n",
-					     pin->name, index);
-
-		chip->int_pin = pin;
-		return irq;
-	}
-
-	return dev_err_probe(dev, -EINVAL,
-			     "interrupt-names names neither INT1 nor INT2\n");
-}
-
-/* Both IIO devices appear only when the whole chip is set up */
-static int as9888_register(struct as9888_chip *chip)
-{
-	enum as9888_sensor_id id;
-	int ret;
-
-	for (id = 0; id < AS9888_SENSORS; id++) {
-		ret = devm_iio_device_register(chip->dev, chip->iio[id]);
-		if (ret)
-			return dev_err_probe(chip->dev, ret,
-					     "cannot register IIO device\n");
-	}
-
-	as9888_magn_debugfs_init(chip->iio[AS9888_MAGN]);
-
-	return 0;
-}
-
-int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
-{
-	struct as9888_chip *chip;
-	int ret;
-
-	chip = devm_kzalloc(dev, sizeof(*chip), GFP_KERNEL);
-	if (!chip)
-		return -ENOMEM;
-
-	chip->dev = dev;
-	chip->regmap = regmap;
-	chip->samp_freq = AS9888_SAMP_FREQ_DEFAULT;
-	init_completion(&chip->drdy);
-	init_waitqueue_head(&chip->stop_wq);
-	init_waitqueue_head(&chip->gap_wq);
-	dev_set_drvdata(dev, chip);
-
-	ret = devm_mutex_init(dev, &chip->lock);
-	if (ret)
-		return ret;
-
-	ret = devm_mutex_init(dev, &chip->int_lock);
-	if (ret)
-		return ret;
-
-	ret = iio_read_mount_matrix(dev, &chip->orientation);
-	if (ret)
-		return dev_err_probe(dev, ret, "cannot read mount matrix\n");
-
-	ret = as9888_power_init(chip);
-	if (ret)
-		return ret;
-
-	ret = as9888_chip_init(chip);
-	if (ret)
-		return ret;
-
-	irq = as9888_get_irq(chip, irq);
-	if (irq < 0)
-		return irq;
-	/* Known before the channels are: sampling_frequency needs it */
-	chip->irq = irq;
-
-	chip->iio[AS9888_ACCEL] = as9888_sensor_alloc(chip, &as9888_accel_desc);
-	if (IS_ERR(chip->iio[AS9888_ACCEL]))
-		return PTR_ERR(chip->iio[AS9888_ACCEL]);
-
-	chip->iio[AS9888_MAGN] = as9888_sensor_alloc(chip, &as9888_magn_desc);
-	if (IS_ERR(chip->iio[AS9888_MAGN]))
-		return PTR_ERR(chip->iio[AS9888_MAGN]);
-
-	if (irq) {
-		ret = as9888_trigger_setup(chip);
-		if (ret)
-			return ret;
-	}
-
-	ret = as9888_nvmem_register(chip);
-	if (ret)
-		return ret;
-
-	pm_runtime_set_autosuspend_delay(dev, AS9888_AUTOSUSPEND_MS);
-	pm_runtime_use_autosuspend(dev);
-	ret = devm_pm_runtime_enable(dev);
-	if (ret)
-		return dev_err_probe(dev, ret, "cannot enable runtime PM\n");
-
-	return as9888_register(chip);
-}
-EXPORT_SYMBOL_NS_GPL(as9888_core_probe, "IIO_AS9888");
-
-/* Power management */
-
-/*
- * Under the chip's lock, so that no register access sequence is cut in the
- * middle: after this, the registers are served from the cache (the trim,
- * the DAC and the interrupt set-up, rewritten on resume) and every other
- * access fails without reaching the bus.
- */
-static int as9888_runtime_suspend(struct device *dev)
-{
-	struct as9888_chip *chip = dev_get_drvdata(dev);
-	int ret;
-
-	guard(mutex)(&chip->lock);
-
-	regcache_cache_only(chip->regmap, true);
-	regcache_mark_dirty(chip->regmap);
-
-	ret = as9888_power_cut(chip);
-	if (ret) {
-		regcache_cache_only(chip->regmap, false);
-		/* RSTN was pulsed: the chip lost its registers */
-		regcache_sync(chip->regmap);
-	}
-
-	return ret;
-}
-
-/*
- * Power returns (with a reset pulse, see as9888_power_on()), so the chip
- * has lost its trim, DAC and interrupt setup: after t_BOOT, rewrite them
- * from the register cache, in power-down.
- */
-static int as9888_runtime_resume(struct device *dev)
-{
-	struct as9888_chip *chip = dev_get_drvdata(dev);
-	int ret;
-
-	guard(mutex)(&chip->lock);
-
-	ret = as9888_power_on(chip);
-	if (ret)
-		return ret;
-
-	regcache_cache_only(chip->regmap, false);
-	as9888_wait_pd(chip);
-	ret = regcache_sync(chip->regmap);
-	if (ret) {
-		regcache_cache_only(chip->regmap, true);
-		as9888_power_cut(chip);
-	}
-
-	return ret;
-}
-
-/*
- * System sleep: as9888_trig_suspend() stops a running data-ready trigger
- * and makes every measurement fail with -EBUSY until resume, so a buffer
- * on another trigger (whose handler may still run until the interrupts
- * are suspended) touches no register; INT1 is disabled, which also waits
- * for a handler in flight; then the supplies go off.
- */
-static int as9888_suspend(struct device *dev)
-{
-	struct as9888_chip *chip = dev_get_drvdata(dev);
-	int ret;
-
-	as9888_trig_suspend(chip);
-	if (chip->irq)
-		disable_irq(chip->irq);
-
-	ret = pm_runtime_force_suspend(dev);
-	if (ret) {
-		if (chip->irq)
-			enable_irq(chip->irq);
-		as9888_trig_resume(chip);
-	}
-
-	return ret;
-}
-
-static int as9888_resume(struct device *dev)
-{
-	struct as9888_chip *chip = dev_get_drvdata(dev);
-	int ret;
-
-	ret = pm_runtime_force_resume(dev);
-	if (chip->irq)
-		enable_irq(chip->irq);
-	if (ret)
-		return ret;
-
-	return as9888_trig_resume(chip);
-}
-
-EXPORT_NS_GPL_DEV_PM_OPS(as9888_pm_ops, IIO_AS9888) = {
-	SYSTEM_SLEEP_PM_OPS(as9888_suspend, as9888_resume)
-	RUNTIME_PM_OPS(as9888_runtime_suspend, as9888_runtime_resume, NULL)
-};
-
-MODULE_DESCRIPTION("ALSEN AS9888 accelerometer/magnetometer core driver");
-MODULE_LICENSE("GPL");
-MODULE_IMPORT_NS("IIO_AS9888");

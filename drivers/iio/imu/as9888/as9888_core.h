@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * ALSEN AS9888 6-axis sensor: definitions shared by the files of the core
- * driver (chip access, the accelerometer and magnetometer IIO devices, the
- * data-ready trigger).
+ * driver (chip access, probe and power management, the accelerometer and
+ * magnetometer IIO devices, the data-ready trigger).
  *
  * The register map and the timing of the datasheet live in as9888_regs.h,
  * which the userspace daemon and the chip model share; this header adds
@@ -248,6 +248,7 @@ static inline struct as9888_chip *as9888_iio_to_chip(struct iio_dev *indio_dev)
 }
 
 /* Chip access, as9888_chip.c; these run with chip->lock held */
+void as9888_wait_pd(struct as9888_chip *chip);
 int as9888_power_down(struct as9888_chip *chip);
 int as9888_start(struct as9888_chip *chip, u8 mode, bool men);
 int as9888_read_sample(struct as9888_chip *chip, struct as9888_raw_sample *s);
@@ -258,6 +259,7 @@ int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 		   u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts);
 int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,
 		      const u8 *val, size_t len);
+int as9888_wait_gap(struct as9888_chip *chip);
 
 /* What both IIO devices share, as9888_chip.c */
 const struct iio_mount_matrix *
@@ -281,8 +283,7 @@ struct iio_dev *as9888_sensor_alloc(struct as9888_chip *chip,
 				    const struct as9888_sensor_desc *desc);
 int as9888_trigger_setup(struct as9888_chip *chip);
 bool as9888_on_drdy_trigger(struct iio_dev *indio_dev);
-/* These two run with chip->lock held */
-int as9888_wait_gap(struct as9888_chip *chip);
+/* This runs with chip->lock held */
 int as9888_trig_sample(struct as9888_chip *chip,
 		       const struct as9888_raw_sample **s);
 void as9888_trig_suspend(struct as9888_chip *chip);

@@ -15,11 +15,11 @@
  *
  * Everything else that needs the chip in power-down (a _raw read, the
  * self-test, a buffer on another trigger, an offset DAC write) waits for
- * the gap between two samples of the trigger: after the handlers are done
- * with one sample and before the next one starts. So a client of one
- * sensor neither stops the other sensor's buffer nor has to wait for it to
- * end, and every sample is compensated with the DAC value it was measured
- * with.
+ * the gap between two samples of the trigger (as9888_wait_gap(), in
+ * as9888_chip.c): after the handlers are done with one sample and before
+ * the next one starts. So a client of one sensor neither stops the other
+ * sensor's buffer nor has to wait for it to end, and every sample is
+ * compensated with the DAC value it was measured with.
  */
 
 #include <linux/bitfield.h>
@@ -55,72 +55,11 @@
  * taken as lost, and a start that failed is tried again after as long
  */
 #define AS9888_TRIG_WD_MS		1000
-/*
- * How long a synchronous measurement waits for the data-ready trigger's
- * next gap between two samples, beyond two sampling periods
- */
-#define AS9888_GAP_WAIT_SLACK_MS	2000
 
 /* The trigger's sampling period in ns; with chip->lock held */
 static u64 as9888_trig_period_ns(const struct as9888_chip *chip)
 {
 	return div_u64(NSEC_PER_SEC, chip->samp_freq);
-}
-
-/*
- * How long to wait for the data-ready trigger's gap: a sample may keep the
- * chip for a whole period, and the one after it too when a handler ran late
- */
-static unsigned long as9888_trig_wait_jiffies(const struct as9888_chip *chip)
-{
-	unsigned int period_ms = DIV_ROUND_UP(MSEC_PER_SEC, chip->samp_freq);
-
-	return msecs_to_jiffies(2 * period_ms + AS9888_GAP_WAIT_SLACK_MS);
-}
-
-/**
- * as9888_wait_gap() - wait for the gap between two samples of the trigger
- * @chip: chip state, with chip->lock held; the lock is dropped while
- *	  waiting
- *
- * A waiter is counted in chip->gap_waiters, and the trigger does not start
- * its next sample while one is counted: the gap is handed over. Without
- * that, the trigger's thread, which runs at real-time priority and starts
- * the next sample at once when it is late, would take the chip back
- * before the woken waiter ever ran.
- *
- * Return: 0 with chip->lock held and no measurement of the data-ready
- * trigger in flight, or -ETIMEDOUT when the trigger's sample did not come
- * (also with chip->lock held).
- */
-int as9888_wait_gap(struct as9888_chip *chip)
-{
-	unsigned long left;
-	int ret = 0;
-
-	lockdep_assert_held(&chip->lock);
-
-	if (!chip->trig_busy)
-		return 0;
-
-	left = as9888_trig_wait_jiffies(chip);
-	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters + 1);
-	while (chip->trig_busy) {
-		mutex_unlock(&chip->lock);
-		left = wait_event_timeout(chip->gap_wq,
-					  !READ_ONCE(chip->trig_busy), left);
-		mutex_lock(&chip->lock);
-		if (!left && chip->trig_busy) {
-			dev_err_ratelimited(chip->dev,
-					    "data-ready trigger stalled\n");
-			ret = -ETIMEDOUT;
-			break;
-		}
-	}
-	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters - 1);
-	wake_up_all(&chip->gap_wq);
-
-	return ret;
 }
 
 /* The handlers are done with the sample, or it never comes: the gap */
