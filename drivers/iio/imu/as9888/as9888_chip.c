@@ -38,8 +38,6 @@
 
 #include <linux/iio/iio.h>
 
-#include <asm/byteorder.h>
-
 #include "as9888_core.h"
 
 /* A measurement that has not completed by 1.5 t + margin has failed */
