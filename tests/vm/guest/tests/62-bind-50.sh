@@ -7,12 +7,16 @@ C=$(client)
 I2C_DRV=/sys/bus/i2c/drivers/as9888_i2c
 
 # repeat N FUNCTION: run FUNCTION N times, print how many runs failed
-# (in a subshell: wait_dev again afterwards for DEV)
+# (in a subshell: wait_dev again afterwards for DEV). Every 10 runs a
+# diagnostic on stderr tells the host's stall watchdog that the cycles
+# advance: 50 reloads take minutes on a busy host, with no TAP line.
 repeat() {
 	_fails=0; _n=0
 	while [ $_n -lt $1 ]; do
 		$2 || _fails=$((_fails + 1))
 		_n=$((_n + 1))
+		[ $((_n % 10)) -ne 0 ] ||
+			diag "$2: $_n of $1 done, $_fails failed (uptime $(uptime_s) s)" >&2
 	done
 	echo $_fails
 }
