@@ -348,10 +348,16 @@ static void complete_measurement(struct as9888_model *m, u64 t_ns)
 		m->st1 |= AS9888_ST1_DOR_MSK;
 	m->st1 |= AS9888_ST1_DRDY_MSK;
 	m->unread = true;
-	if (m->int1en & AS9888_INTEN_DR_MSK)
+	if (m->int1en & AS9888_INTEN_DR_MSK) {
+		if (!m->dr1)
+			m->dr1_rises++;
 		m->dr1 = true;
-	if (m->int2en & AS9888_INTEN_DR_MSK)
+	}
+	if (m->int2en & AS9888_INTEN_DR_MSK) {
+		if (!m->dr2)
+			m->dr2_rises++;
 		m->dr2 = true;
+	}
 
 	m->measuring = false;
 	m->ms = AS9888_MS_POWER_DOWN;
@@ -490,6 +496,15 @@ bool as9888_model_pin(struct as9888_model *m, u64 now_ns,
 	if (pin == AS9888_PIN_INT2)
 		return m->dr2 && !has_fault(m, AS9888_FAULT_INT2_OPEN);
 	return false;
+}
+
+u32 as9888_model_pin_rises(const struct as9888_model *m, enum as9888_pin pin)
+{
+	if (pin == AS9888_PIN_INT1)
+		return has_fault(m, AS9888_FAULT_INT1_OPEN) ? 0 : m->dr1_rises;
+	if (pin == AS9888_PIN_INT2)
+		return has_fault(m, AS9888_FAULT_INT2_OPEN) ? 0 : m->dr2_rises;
+	return 0;
 }
 
 /* Count a transfer; true when the chip does not answer it. */

@@ -210,6 +210,8 @@ struct as9888_model {
 	u8 trim[10];			/* 0x30..0x39 */
 	bool dr1;
 	bool dr2;
+	u32 dr1_rises;			/* INT1 low-to-high transitions */
+	u32 dr2_rises;			/* INT2 low-to-high transitions */
 	bool unread;			/* ST2 not read since last sample */
 
 	u32 nak_count;			/* transfers modulo the NAK period */
@@ -258,6 +260,15 @@ void as9888_model_set_rstn(struct as9888_model *m, u64 now_ns, bool level);
 /* Level of INT1/INT2 at now_ns. */
 bool as9888_model_pin(struct as9888_model *m, u64 now_ns,
 		      enum as9888_pin pin);
+
+/*
+ * How often INT1/INT2 has risen since power-on, as of the last call that
+ * took a time (an open pin never rises). A caller that samples the level
+ * can miss a pulse: the pin falls on an MS write and rises again when
+ * that measurement ends, both between two of its looks when the caller
+ * is delayed. The count tells it that an edge happened all the same.
+ */
+u32 as9888_model_pin_rises(const struct as9888_model *m, enum as9888_pin pin);
 
 /*
  * Time of the next internal event (measurement completion, reset taking

@@ -1876,6 +1876,45 @@ static void test_fault_int1_open(void **state)
 	assert_true(pin2());
 	assert_int_equal(rd(AS9888_REG_INT1ST), 1);
 	assert_int_equal(rd(AS9888_REG_ST1), AS9888_ST1_DRDY_MSK);
+	assert_int_equal(as9888_model_pin_rises(&M, AS9888_PIN_INT1), 0);
+	assert_int_equal(as9888_model_pin_rises(&M, AS9888_PIN_INT2), 1);
+}
+
+/*
+ * A pulse between two looks: the MS write deasserts INT1 and the
+ * measurement raises it again, and whoever looks only before and after
+ * sees it high both times. The rise count still says it rose.
+ */
+static void test_pin_rises_between_looks(void **state)
+{
+	u32 r0;
+
+	ready(NULL);
+	wr(AS9888_REG_INT1EN, 1);
+	assert_int_equal(as9888_model_pin_rises(&M, AS9888_PIN_INT1), 0);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	assert_false(pin1());
+	at(AS9888_T_ACC_NS);
+	assert_true(pin1());
+	r0 = as9888_model_pin_rises(&M, AS9888_PIN_INT1);
+	assert_int_equal(r0, 1);
+	/* the next sample: started and done with no look in between */
+	at(AS9888_T_PD_NS);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	at(AS9888_T_ACC_NS);
+	assert_true(pin1());
+	assert_int_equal(as9888_model_pin_rises(&M, AS9888_PIN_INT1), r0 + 1);
+	/* INT2 only, INT1 off: INT1 stays low and does not count */
+	at(AS9888_T_PD_NS);
+	wr(AS9888_REG_INT2EN, 1);
+	assert_int_equal(as9888_model_pin_rises(&M, AS9888_PIN_INT2), 0);
+	wr(AS9888_REG_INT1EN, 0);
+	wr(AS9888_REG_MS, AS9888_MS_SINGLE);
+	at(AS9888_T_ACC_NS);
+	assert_true(pin2());
+	assert_false(pin1());
+	assert_int_equal(as9888_model_pin_rises(&M, AS9888_PIN_INT1), r0 + 1);
+	assert_int_equal(as9888_model_pin_rises(&M, AS9888_PIN_INT2), 1);
 }
 
 static void test_fault_int2_open(void **state)
@@ -2204,6 +2243,7 @@ int main(void)
 		cmocka_unit_test(test_live_noise),
 		cmocka_unit_test(test_fault_no_drdy),
 		cmocka_unit_test(test_fault_int1_open),
+		cmocka_unit_test(test_pin_rises_between_looks),
 		cmocka_unit_test(test_fault_int2_open),
 		cmocka_unit_test(test_fault_rstn_open),
 		cmocka_unit_test(test_fault_wia),

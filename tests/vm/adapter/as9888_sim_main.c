@@ -153,10 +153,12 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
 
 /**
  * struct as9888_sim - the simulated board
- * @lock:	protects @model, @pin, @rstn, @ptr and the bus counters;
+ * @lock:	protects @model, @pin, @rises, @rstn, @ptr and the bus counters;
  *		taken in the hrtimer (hard irq) and in process context
  * @model:	the chip
  * @pin:	INT1/INT2 levels last seen (edge detection)
+ * @rises:	INT1/INT2 rise counts of the model last seen: a pulse that
+ *		fell and rose again between two looks is an edge too
  * @rstn:	RSTN level driven by the consumer
  * @ptr:	register address for a read without a preceding write
  * @xfers:	master_xfer calls and SPI messages
@@ -192,6 +194,7 @@ struct as9888_sim {
 	spinlock_t lock;		/* see @lock above */
 	struct as9888_model model;
 	bool pin[2];
+	u32 rises[2];
 	bool rstn;
 	u8 ptr;
 	u64 xfers;
@@ -333,6 +336,12 @@ static void as9888_sim_arm(struct as9888_sim *s)
 /*
  * Sample INT1/INT2 at @now and return the lines that need an interrupt:
  * bit n set for line AS9888_SIM_INT1 + n. Caller holds sim->lock.
+ *
+ * The level alone misses a pulse: a transfer that starts a measurement
+ * (the MS write deasserts the pin) and is then held up longer than the
+ * measurement (the host deschedules the guest) finds the pin high before
+ * and after. The model's rise count catches it: on the wire it is a
+ * falling and a rising edge.
  */
 static unsigned int as9888_sim_edges(struct as9888_sim *s, u64 now)
 {
@@ -341,11 +350,15 @@ static unsigned int as9888_sim_edges(struct as9888_sim *s, u64 now)
 
 	for (i = 0; i < 2; i++) {
 		bool lvl = as9888_model_pin(&s->model, now, i);
+		u32 rises = as9888_model_pin_rises(&s->model, i);
+		bool rose = rises != s->rises[i];
+		bool fell = s->pin[i] && (!lvl || rose);
 		unsigned int irq, type;
 
-		if (lvl == s->pin[i])
+		if (lvl == s->pin[i] && !rose)
 			continue;
 		s->pin[i] = lvl;
+		s->rises[i] = rises;
 		if (i == AS9888_PIN_INT1 &&
 		    s->wiring == AS9888_SIM_WIRING_INT1_LEVEL) {
 			if (lvl)
@@ -358,8 +371,8 @@ static unsigned int as9888_sim_edges(struct as9888_sim *s, u64 now)
 		type = irq_get_trigger_type(irq);
 		if (type == IRQ_TYPE_NONE)
 			type = IRQ_TYPE_EDGE_RISING;
-		if (!((lvl && (type & IRQ_TYPE_EDGE_RISING)) ||
-		      (!lvl && (type & IRQ_TYPE_EDGE_FALLING))))
+		if (!((rose && (type & IRQ_TYPE_EDGE_RISING)) ||
+		      (fell && (type & IRQ_TYPE_EDGE_FALLING))))
 			continue;
 		if (i == AS9888_PIN_INT1 && s->drop_int1) {
 			s->drop_int1--;
@@ -426,6 +439,8 @@ static void as9888_sim_power_on(struct as9888_sim *s)
 	as9888_model_set_bus(&s->model, spi ? AS9888_BUS_SPI : AS9888_BUS_I2C);
 	s->pin[0] = false;
 	s->pin[1] = false;
+	s->rises[0] = 0;
+	s->rises[1] = 0;
 	s->ptr = 0;
 	if (!s->rstn)
 		as9888_model_set_rstn(&s->model, ktime_get_ns(), false);
