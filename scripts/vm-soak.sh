@@ -9,8 +9,8 @@
 # core, "stress-ng --cpu N"), so that every guest test runs slower than on
 # an idle machine. The bench has no total time budget, only its stall
 # watchdog (AS9888_VM_STALL), so a slow run must still pass: this script
-# proves it. Not part of scripts/test.sh (it takes about an hour on two
-# cores); the README names it.
+# proves it. Not part of scripts/test.sh (on two cores one run of one
+# kernel takes 20 to 35 min beside the hog); the README names it.
 #
 # AS9888_SOAK_HOGS sets the hog's CPU workers (default: one per core). Set
 # it to 0 for a second soak run at the same time, on its own AS9888_CACHE,
