@@ -466,17 +466,25 @@ sp_udev() {
 		sh -c "! echo '$_sp_t' | grep -q -e compass -e als"
 }
 # sp_wait_line PATTERN: until monitor-sensor has printed a line matching it
-# after the first $SEEN lines (60 s: a stall); sets SEEN to that line's
-# number
+# after the first $SEEN lines (120 s of the guest's clock: a stall); sets
+# SEEN to that line's number. The bound is time, not a number of looks: on
+# a loaded host each look (an awk) is slow. A diagnostic every 15 s tells
+# the host's stall watchdog that the wait is bounded and still running.
 SEEN=0
 sp_wait_line() {
-	_sp_i=0
-	while [ $_sp_i -lt 600 ]; do
+	_sp_t0=$(cut -d. -f1 /proc/uptime)
+	_sp_said=0
+	while :; do
 		_sp_w=$(awk -v from=$SEEN -v pat="$1" 'NR > from && $0 ~ pat { print NR; exit }' $O/ms.out)
 		[ -n "$_sp_w" ] && { SEEN=$_sp_w; return 0; }
-		sleep 0.1; _sp_i=$((_sp_i + 1))
+		_sp_s=$(($(cut -d. -f1 /proc/uptime) - _sp_t0))
+		[ $_sp_s -ge 120 ] && return 1
+		if [ $_sp_s -ge $((_sp_said + 15)) ]; then
+			_sp_said=$_sp_s
+			diag "waiting for monitor-sensor's '$1' ($_sp_s s of 120)" >&2
+		fi
+		sleep 0.1
 	done
-	return 1
 }
 # sp_client: monitor-sensor's first lines: the service, an accelerometer,
 # no light sensor, no compass (the magnetometer has no tilt-compensated
@@ -506,7 +514,7 @@ sp_up_for() {
 # up, so a board's mount matrix carries the sign, see README): X beyond 35
 # degrees from the screen plane: right-up (X reads -g) or left-up; else Y
 # beyond 35 degrees: normal (Y reads -g) or bottom-up; else (flat) no
-# change. A line has 60 s to come.
+# change. A line has 120 s to come (sp_wait_line).
 sp_postures() {
 	diag "mount matrix: $(cat $DEV/in_accel_mount_matrix)"
 	printf '%s\n' "normal:0 -1 0" "left-up:1 0 0" "bottom-up:0 1 0" "right-up:-1 0 0" > $O/steps
