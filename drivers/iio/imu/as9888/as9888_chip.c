@@ -153,7 +153,11 @@ const struct regmap_config as9888_spi_regmap_config = {
 };
 EXPORT_SYMBOL_NS_GPL(as9888_spi_regmap_config, "IIO_AS9888");
 
-/* Modes and measurements; all of these run with chip->lock held */
+/*
+ * Modes and measurements; all of these run with chip->lock held, or in
+ * probe before the IIO devices are registered, when nothing else can
+ * reach the chip
+ */
 
 /* Wait until t_PD has passed since the chip entered power-down */
 void as9888_wait_pd(struct as9888_chip *chip)
