@@ -1,7 +1,7 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# kernel-trees.sh [6.1|7.2|all]
+# kernel-trees.sh [--source-only] [6.1|7.2|all]
 #
 # Obtains the two kernel trees the AS9888 driver is built against, from
 # Debian packages only, and prepares each one for out-of-tree module builds
@@ -22,6 +22,10 @@
 # symbol CRCs (CONFIG_MODVERSIONS) for real: no KBUILD_MODPOST_WARN needed.
 # The tiny config keeps this at a few minutes per kernel on 2 cores.
 #
+# --source-only unpacks the sources and stops there: no sparse, no build,
+# no kernels.env (vm-run.sh takes tools/iio from the 7.2 source even when
+# it boots only 6.1).
+#
 # Idempotent: stamp files make a warm run take about a second. Delete
 # $AS9888_CACHE/stamps/<name> to redo one step, or the cache dir to start over.
 # Changing CONFIG_FRAGMENT (or gcc) rebuilds the trees incrementally.
@@ -41,10 +45,15 @@ set -euo pipefail
 . "$(dirname "$0")/kernel-common.sh"
 
 usage() {
-	echo "usage: $0 [6.1|7.2|all]" >&2
+	echo "usage: $0 [--source-only] [6.1|7.2|all]" >&2
 	exit 2
 }
 
+source_only=0
+if [ "${1:-}" = --source-only ]; then
+	source_only=1
+	shift
+fi
 case "${1:-all}" in
 6.1 | 7.2) WANT=("$1") ;;
 all) WANT=("${AS9888_KERNELS[@]}") ;;
@@ -346,14 +355,19 @@ write_env() {
 # --- main -----------------------------------------------------------------------
 
 ensure_pkgs "${BUILD_DEPS[@]}"
-ensure_sparse
+[ "$source_only" -eq 1 ] || ensure_sparse
 for k in "${WANT[@]}"; do
 	case "$k" in
 	6.1) ensure_source_6_1 ;;
 	7.2) ensure_source_7_2 ;;
 	esac
-	prepare_tree "$k"
+	[ "$source_only" -eq 1 ] || prepare_tree "$k"
 done
+if [ "$source_only" -eq 1 ]; then
+	for k in "${WANT[@]}"; do log "  $k: src $(ksrc "$k")"; done
+	log "done in $(since "$T_START") (sources only)"
+	exit 0
+fi
 write_env
 
 log "summary:"

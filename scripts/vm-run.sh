@@ -81,6 +81,14 @@ build_daemon() {
 build_tools_iio() {
 	local o="$VM_DIR/tools-iio/"
 	mkdir -p "$o"
+	# A fresh cache has no 7.2 source yet (vm-kernel.sh unpacks the
+	# kernels it boots, later, and maybe not 7.2): unpack it first
+	if [ ! -f "$(ksrc 7.2)/Makefile" ]; then
+		log "tools/iio: no 7.2 source yet, running scripts/kernel-trees.sh --source-only 7.2"
+		"$AS9888_REPO/scripts/kernel-trees.sh" --source-only 7.2 \
+			>"$LOG_DIR/vm-kernel-trees-src-7.2.log" 2>&1 ||
+			die "kernel-trees.sh --source-only 7.2 failed, see $LOG_DIR/vm-kernel-trees-src-7.2.log"
+	fi
 	make -C "$(ksrc 7.2)/tools/iio" OUTPUT="$o" LDFLAGS=-static \
 		>"$LOG_DIR/vm-tools-iio.log" 2>&1 ||
 		die "tools/iio build failed, see $LOG_DIR/vm-tools-iio.log"
