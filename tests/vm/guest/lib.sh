@@ -262,6 +262,11 @@ monotonic() {
 	od -A n -t d8 -v "$1" | awk 'NF == 2 { if (n++ && $2 <= last) bad++; last = $2 }
 		END { exit (n < 2 || bad) }'
 }
+# the longest time between two samples of a capture, in milliseconds
+max_gap_ms() {
+	od -A n -t d8 -v "$1" | awk 'NF == 2 { if (n++ && $2 - last > gap) gap = $2 - last; last = $2 }
+		END { printf "%d", gap / 1000000 }'
+}
 # mean timestamp difference in microseconds
 period_us() {
 	od -A n -t d8 -v "$1" | awk 'NF == 2 { if (!n++) first = $2; last = $2 }
