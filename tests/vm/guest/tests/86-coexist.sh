@@ -35,12 +35,12 @@ uncal() {
 applied() { [ "$(cal_get)" = "$CAL" ] && [ "$(dac)" = "$DAC" ]; }
 # hold [COUNT]: iio_readdev on the data-ready trigger into $O/held.bin,
 # forever without COUNT; HPID; returns once the buffer is on. libiio's
-# local backend gives up a refill (16 samples here) that takes more than
-# its default 1000 ms: a wall-clock budget that a loaded TCG guest with a
-# daemon test running beside the client overran (the client quit with
-# "Unable to refill buffer: Connection timed out" while its samples came
-# at most 44 ms apart). -T 60000: the client still ends, and says so, if
-# the samples really stop; a holder like iio-sensor-proxy waits for good.
+# local backend gives up a refill that sees no sample for 1000 ms, and
+# the single-CPU guest on a loaded host stops for about that long now and
+# then (DECISIONS: "Open: gaps of up to a second"): the client quit with
+# "Unable to refill buffer: Connection timed out". -T 60000: the client
+# still ends, and says so, if the samples really stop; a holder like
+# iio-sensor-proxy waits for good.
 hold() {
 	iio_readdev -T 60000 -t "$T" -b 16 ${1:+-s $1} "$NAME" accel_x accel_y accel_z timestamp \
 		> $O/held.bin 2> $O/held.err &
@@ -53,9 +53,8 @@ hold() {
 }
 unhold() { kill $HPID 2>/dev/null; wait $HPID 2>/dev/null; }
 size() { wc -c < $O/held.bin; }
-# what the held client says and got, when it stopped before its time: a
-# sample gap of a second or more is the driver's or the simulator's (libiio
-# gives up a refill after 1000 ms), a short one the client's own
+# what the held client says and got, when it stopped before its time:
+# its error, the samples it kept and the longest gap between two of them
 held_diag() {
 	[ -z "$HELD_SAID" ] || return 0
 	HELD_SAID=1
