@@ -36,11 +36,11 @@ applied() { [ "$(cal_get)" = "$CAL" ] && [ "$(dac)" = "$DAC" ]; }
 # hold [COUNT]: iio_readdev on the data-ready trigger into $O/held.bin,
 # forever without COUNT; HPID; returns once the buffer is on. libiio's
 # local backend gives up a refill that sees no sample for 1000 ms, and
-# on a loaded host the samples stop for about that long now and then,
-# cause still open (DECISIONS: "Open: gaps of up to a second"): the client quit with
-# "Unable to refill buffer: Connection timed out". -T 60000: the client
-# still ends, and says so, if the samples really stop; a holder like
-# iio-sensor-proxy waits for good.
+# on a loaded host the samples stop for about that long now and then
+# (cause still open, DECISIONS: "Open: gaps of up to a second"): the
+# client quit with "Unable to refill buffer: Connection timed out".
+# -T 60000: the client still ends, and says so, if the samples really
+# stop; a holder like iio-sensor-proxy waits for good.
 hold() {
 	iio_readdev -T 60000 -t "$T" -b 16 ${1:+-s $1} "$NAME" accel_x accel_y accel_z timestamp \
 		> $O/held.bin 2> $O/held.err &
