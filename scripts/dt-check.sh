@@ -151,11 +151,7 @@ elif ! dt_tools_ok; then
 fi
 if [ "${DT_USE_PYPI:-0}" = 1 ]; then
 	VENV="$AS9888_CACHE/dtschema-venv"
-	if [ ! -x "$VENV/bin/dt-validate" ]; then
-		log "installing PyPI dtschema into $VENV"
-		/usr/bin/python3 -m venv "$VENV"
-		"$VENV/bin/pip" install -q dtschema
-	fi
+	dtschema_venv "$VENV"
 	DT_BIN="$VENV/bin"
 	dt_tools_ok || {
 		sed 's/^/    /' "$OUT/probe.err" >&2

@@ -142,3 +142,18 @@ select_kernels() {
 		;;
 	esac
 }
+
+# dtschema_venv DIR: a venv with PyPI's dtschema at the versions pinned in
+# scripts/dtschema-requirements.txt (Debian 12's dt-schema 2022.08 cannot
+# process 7.2's base schemas); made again when the pins change
+dtschema_venv() {
+	local venv=$1 reqs="$AS9888_REPO/scripts/dtschema-requirements.txt"
+	[ -x "$venv/bin/dt-validate" ] && cmp -s "$reqs" "$venv/as9888-requirements.txt" &&
+		return 0
+	log "installing PyPI dtschema (pinned in $reqs) into $venv"
+	rm -rf "$venv"
+	/usr/bin/python3 -m venv "$venv" || die "python3 -m venv $venv failed"
+	"$venv/bin/pip" install -q --no-deps -r "$reqs" ||
+		die "pip install of the pinned dtschema failed"
+	cp "$reqs" "$venv/as9888-requirements.txt"
+}

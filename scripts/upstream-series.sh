@@ -35,7 +35,8 @@
 # source (made once, then reset to its base commit every run) and build-7.2/
 # its O= directory, a copy of the prepared 7.2 build made once. dtschema
 # (2023.9 or newer, which dt_binding_check needs; Debian 12 has 2022.08)
-# comes from PyPI into the venv scripts/dt-check.sh uses.
+# comes from PyPI, at the versions pinned in scripts/dtschema-requirements.txt,
+# into the venv scripts/dt-check.sh uses (dtschema_venv in kernel-common.sh).
 #
 # Environment: AS9888_CACHE, AS9888_JOBS, AS9888_SERIES_FROM (the From: and
 # Signed-off-by: identity), AS9888_SERIES_SKIP_DOCS=1 (no htmldocs).
@@ -433,17 +434,7 @@ fi
 
 # --- dt_binding_check -------------------------------------------------------
 VENV="$AS9888_CACHE/dtschema-venv"
-if ! "$VENV/bin/python3" - <<'EOF' 2>/dev/null; then
-import sys
-from importlib.metadata import version
-v = tuple(int(x) for x in version("dtschema").split(".")[:2])
-sys.exit(0 if v >= (2023, 9) else 1)
-EOF
-	log "installing PyPI dtschema into $VENV (Debian 12's 2022.08 is older than dt_binding_check's minimum)"
-	[ -x "$VENV/bin/python3" ] || /usr/bin/python3 -m venv "$VENV"
-	"$VENV/bin/pip" install -q --upgrade dtschema >"$SLOG/pip.log" 2>&1 ||
-		die "pip install dtschema failed, see $SLOG/pip.log"
-fi
+dtschema_venv "$VENV"
 DTB="$BO/Documentation/devicetree/bindings"
 rm -f "$DTB"/.yamllint.checked "$DTB"/.dt-binding.checked "$DTB"/.dt-style.checked \
 	"$DTB"/iio/imu/alsen,as9888.example.dt*
