@@ -50,7 +50,8 @@ static long read_journal(const char *journal, const struct storage_trust *trust,
 	if (trust && storage_trust_file(trust, journal, &st, why, whylen))
 		return -EPERM;
 	if (record_parse(buf, (size_t)len, &rec, reason, sizeof(reason))) {
-		snprintf(why, whylen, "%s is not a valid record: %s", journal, reason);
+		snprintf(why, whylen, "%.256s is not a valid record: %.200s", journal,
+			 reason);
 		return -EINVAL;
 	}
 
