@@ -11,7 +11,7 @@ packages=(
 	libcmocka-dev
 	libgpiod-dev gpiod
 	clang-14 libclang-rt-14-dev
-	strace python3 python3-jsonschema
+	strace python3 python3-jsonschema libxml2-utils
 	systemd man-db
 )
 

@@ -59,89 +59,111 @@ static int write_all(int fd, const char *data, size_t len)
 	return 0;
 }
 
-int atomic_write_file(const char *path, const void *data, size_t len,
-		      mode_t mode, char *err, size_t errlen)
+int atomic_begin(struct atomic_pending *p, const char *path, mode_t mode,
+		 char *err, size_t errlen)
 {
-	char dir[PATH_MAX], base[PATH_MAX], tmp[PATH_MAX + sizeof(TMP_SUFFIX)];
+	char dir[PATH_MAX];
 	struct stat st;
-	int dfd, fd, ret;
+	int ret;
 
-	ret = split_path(path, dir, base, err, errlen);
+	p->dfd = p->fd = -1;
+	ret = split_path(path, dir, p->base, err, errlen);
 	if (ret)
 		return ret;
-	snprintf(tmp, sizeof(tmp), "%s%s", base, TMP_SUFFIX);
+	snprintf(p->path, sizeof(p->path), "%s", path);
+	snprintf(p->tmp, sizeof(p->tmp), "%s%s", p->base, TMP_SUFFIX);
 
-	dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-	if (dfd < 0)
+	p->dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	if (p->dfd < 0)
 		return failed(err, errlen, "cannot open directory", dir, errno);
 
-	if (fstatat(dfd, base, &st, AT_SYMLINK_NOFOLLOW) == 0) {
+	if (fstatat(p->dfd, p->base, &st, AT_SYMLINK_NOFOLLOW) == 0) {
 		if (S_ISLNK(st.st_mode)) {
 			snprintf(err, errlen, "%s is a symbolic link: refusing to replace it",
 				 path);
-			close(dfd);
-			return -ELOOP;
-		}
-		if (!S_ISREG(st.st_mode)) {
+			ret = -ELOOP;
+		} else if (!S_ISREG(st.st_mode)) {
 			snprintf(err, errlen, "%s exists and is not a regular file", path);
-			close(dfd);
-			return -EEXIST;
+			ret = -EEXIST;
 		}
 	} else if (errno != ENOENT) {
 		ret = failed(err, errlen, "cannot stat", path, errno);
-		close(dfd);
-		return ret;
 	}
 
 	/* a leftover of an interrupted save is ours to remove */
-	if (unlinkat(dfd, tmp, 0) && errno != ENOENT) {
-		ret = failed(err, errlen, "cannot remove stale", tmp, errno);
-		close(dfd);
-		return ret;
-	}
-
-	fd = openat(dfd, tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-		    mode);
-	if (fd < 0) {
-		ret = failed(err, errlen, "cannot create", tmp, errno);
-		close(dfd);
-		return ret;
-	}
-
-	ret = fchmod(fd, mode) ? -errno : 0;
-	if (ret)
-		failed(err, errlen, "cannot set the mode of", tmp, -ret);
+	if (!ret && unlinkat(p->dfd, p->tmp, 0) && errno != ENOENT)
+		ret = failed(err, errlen, "cannot remove stale", p->tmp, errno);
 	if (!ret) {
-		ret = write_all(fd, data, len);
-		if (ret)
-			failed(err, errlen, "cannot write", tmp, -ret);
+		p->fd = openat(p->dfd, p->tmp, O_WRONLY | O_CREAT | O_EXCL |
+			       O_NOFOLLOW | O_CLOEXEC, mode);
+		if (p->fd < 0)
+			ret = failed(err, errlen, "cannot create", p->tmp, errno);
 	}
-	if (!ret && fsync(fd)) {
-		ret = -errno;
-		failed(err, errlen, "cannot flush", tmp, errno);
+	if (!ret && fchmod(p->fd, mode))
+		ret = failed(err, errlen, "cannot set the mode of", p->tmp, errno);
+	if (ret)
+		atomic_abort(p);
+
+	return ret;
+}
+
+void atomic_abort(struct atomic_pending *p)
+{
+	if (p->fd >= 0) {
+		close(p->fd);
+		unlinkat(p->dfd, p->tmp, 0);
 	}
-	if (close(fd) && !ret) {
+	if (p->dfd >= 0)
+		close(p->dfd);
+	p->dfd = p->fd = -1;
+}
+
+int atomic_commit(struct atomic_pending *p, const void *data, size_t len,
+		  char *err, size_t errlen)
+{
+	int ret;
+
+	ret = write_all(p->fd, data, len);
+	if (ret)
+		failed(err, errlen, "cannot write", p->tmp, -ret);
+	if (!ret && fsync(p->fd)) {
 		ret = -errno;
-		failed(err, errlen, "cannot close", tmp, errno);
+		failed(err, errlen, "cannot flush", p->tmp, errno);
 	}
-	if (!ret && renameat(dfd, tmp, dfd, base)) {
+	if (close(p->fd) && !ret) {
 		ret = -errno;
-		failed(err, errlen, "cannot rename over", path, errno);
+		failed(err, errlen, "cannot close", p->tmp, errno);
+	}
+	p->fd = -1;
+	if (!ret && renameat(p->dfd, p->tmp, p->dfd, p->base)) {
+		ret = -errno;
+		failed(err, errlen, "cannot rename over", p->path, errno);
 	}
 	if (ret) {
-		unlinkat(dfd, tmp, 0);
-		close(dfd);
+		unlinkat(p->dfd, p->tmp, 0);
+		atomic_abort(p);
 		return ret;
 	}
 
 	/* the rename is durable once the directory is */
-	if (fsync(dfd)) {
+	if (fsync(p->dfd)) {
 		ret = -errno;
-		failed(err, errlen, "cannot flush directory", dir, errno);
+		failed(err, errlen, "cannot flush the directory of", p->path, errno);
 	}
-	close(dfd);
+	atomic_abort(p);
 
 	return ret;
+}
+
+int atomic_write_file(const char *path, const void *data, size_t len,
+		      mode_t mode, char *err, size_t errlen)
+{
+	struct atomic_pending p;
+	int ret;
+
+	ret = atomic_begin(&p, path, mode, err, errlen);
+
+	return ret ? ret : atomic_commit(&p, data, len, err, errlen);
 }
 
 long read_file_nofollow(const char *path, char *buf, size_t max, char *err,
@@ -215,8 +237,7 @@ int ensure_parent_dir(const char *path, mode_t mode, char *err, size_t errlen)
 	return 0;
 }
 
-/* fsync the directory of @path, after a change of its entries */
-static int sync_parent(const char *path, char *err, size_t errlen)
+int durable_sync_dir(const char *path, char *err, size_t errlen)
 {
 	char dir[PATH_MAX], base[PATH_MAX];
 	int dfd, ret;
@@ -238,7 +259,7 @@ int durable_rename(const char *from, const char *to, char *err, size_t errlen)
 	if (rename(from, to))
 		return failed(err, errlen, "cannot rename to", to, errno);
 
-	return sync_parent(to, err, errlen);
+	return durable_sync_dir(to, err, errlen);
 }
 
 int durable_unlink(const char *path, char *err, size_t errlen)
@@ -246,5 +267,5 @@ int durable_unlink(const char *path, char *err, size_t errlen)
 	if (unlink(path) && errno != ENOENT)
 		return failed(err, errlen, "cannot remove", path, errno);
 
-	return sync_parent(path, err, errlen);
+	return durable_sync_dir(path, err, errlen);
 }

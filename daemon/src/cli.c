@@ -75,6 +75,8 @@ static int parse_mode(const char *s, unsigned int *mode)
 	unsigned long v;
 	char *end;
 
+	if (*s < '0' || *s > '7')	/* strtoul() would take " 1", "+1" */
+		return -EINVAL;
 	errno = 0;
 	v = strtoul(s, &end, 8);
 	if (errno || end == s || *end || v > 0777)
@@ -90,6 +92,8 @@ static int parse_address(const char *s, unsigned int *address)
 	unsigned long v;
 	char *end;
 
+	if (*s < '0' || *s > '9')
+		return -EINVAL;
 	errno = 0;
 	v = strtoul(s, &end, 0);
 	if (errno || end == s || *end || v < 0x0c || v > 0x0f)

@@ -123,24 +123,38 @@ int cmd_request(const struct cli_opts *o)
 	struct reply r = { 0 };
 	char line[REQUEST_LINE_MAX + 16];
 	size_t body;
-	int fd, len, status;
+	int fd, len, status, send_errno;
 
 	fd = connect_daemon(o->socket_path);
 	if (fd < 0)
 		return EXIT_FAILURE;
 	len = snprintf(line, sizeof(line), "%s%s\n", o->request,
 		       o->json ? " --json" : "");
-	if (len >= (int)sizeof(line) ||
-	    send(fd, line, (size_t)len, MSG_NOSIGNAL) != len) {
+	if (len >= (int)sizeof(line)) {
+		fprintf(stderr, "as9888-calibd: cannot send the request to %s: request too long\n",
+			o->socket_path);
+		close(fd);
+		return EXIT_FAILURE;
+	}
+	send_errno = send(fd, line, (size_t)len, MSG_NOSIGNAL) == len ? 0 : errno;
+	/*
+	 * A daemon that refuses us (busy) answers and hangs up before it
+	 * reads: the send fails, and the answer is there to be read.
+	 */
+	if (send_errno && send_errno != EPIPE && send_errno != ECONNRESET) {
 		fprintf(stderr, "as9888-calibd: cannot send the request to %s: %s\n",
-			o->socket_path, len >= (int)sizeof(line) ?
-			"request too long" : strerror(errno));
+			o->socket_path, strerror(send_errno));
 		close(fd);
 		return EXIT_FAILURE;
 	}
 	shutdown(fd, SHUT_WR);
 	status = read_reply(fd, &r, o->socket_path);
 	close(fd);
+	if (!status && send_errno && !r.len) {
+		fprintf(stderr, "as9888-calibd: cannot send the request to %s: %s\n",
+			o->socket_path, strerror(send_errno));
+		status = -send_errno;
+	}
 	if (status) {
 		free(r.buf);
 		return EXIT_FAILURE;

@@ -4,10 +4,14 @@
  * show.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include "atomic_file.h"
 #include "commands.h"
 #include "ftest_print.h"
 #include "iio.h"
@@ -15,27 +19,82 @@
 #include "session.h"
 #include "show.h"
 
-/* --junit FILE: opened before the test, so that a bad path costs no unit */
-static FILE *open_junit(const char *path)
-{
-	FILE *f = fopen(path, "we");
+/* The mode of a JUnit report: it holds nothing secret */
+#define JUNIT_MODE	0644
+/* What a file must start with to be taken as an older report and replaced */
+#define JUNIT_MAGIC	"<?xml"
 
-	if (!f)
-		fprintf(stderr, "as9888-calibd: cannot write %s: %s; nothing done\n",
-			path, strerror(errno));
-	return f;
+/*
+ * --junit FILE, checked and begun before the test, so that a bad path
+ * costs no unit: written as the record is (atomic_file.h: never through a
+ * symbolic link, a temporary file renamed over it), and an existing FILE
+ * is replaced only when it is a regular file with one link that starts as
+ * an XML document does (an older report), never some other file a script
+ * named by mistake. 0, or -errno said on stderr.
+ */
+static int begin_junit(const char *path, struct atomic_pending *p)
+{
+	char head[sizeof(JUNIT_MAGIC) - 1], err[512];
+	struct stat st = { 0 };
+	ssize_t n = 0;
+	int fd, ret = 0;
+
+	fd = open(path, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+	if (fd < 0 && errno == ELOOP) {
+		snprintf(err, sizeof(err), "%s is a symbolic link: not followed; give the report's own path",
+			 path);
+		ret = -ELOOP;
+	} else if (fd < 0 && errno != ENOENT) {
+		snprintf(err, sizeof(err), "cannot open %s: %s", path, strerror(errno));
+		ret = -errno;
+	} else if (fd >= 0) {
+		if (!fstat(fd, &st) && S_ISREG(st.st_mode))
+			n = read(fd, head, sizeof(head));
+		if (fstat(fd, &st) || !S_ISREG(st.st_mode) || st.st_nlink != 1 ||
+		    n != (ssize_t)sizeof(head) || memcmp(head, JUNIT_MAGIC, sizeof(head))) {
+			snprintf(err, sizeof(err), "%s exists and is not a JUnit report (%s): not replaced; remove it or give another path",
+				 path, !S_ISREG(st.st_mode) ? "not a regular file" :
+				 st.st_nlink != 1 ? "it has other hard links" :
+				 "it does not start with " JUNIT_MAGIC);
+			ret = -EEXIST;
+		}
+		close(fd);
+	}
+	if (!ret)
+		ret = atomic_begin(p, path, JUNIT_MODE, err, sizeof(err));
+	if (ret)
+		fprintf(stderr, "as9888-calibd: cannot write the JUnit report: %s; nothing done\n",
+			err);
+
+	return ret;
 }
 
-/* The JUnit report into @f, closed; false (said) when it could not be written */
-static bool write_junit(FILE *f, const char *path, const struct ftest_result *res)
+/* The JUnit report into @p; false (said) when it could not be written */
+static bool write_junit(struct atomic_pending *p, const char *path,
+			const struct ftest_result *res)
 {
+	char *buf = NULL, err[512];
+	size_t len = 0;
+	FILE *f;
 	bool ok;
 
-	ftest_print_junit(f, res);
-	ok = !ferror(f);
-	ok = !fclose(f) && ok;
+	f = open_memstream(&buf, &len);
+	if (f) {
+		ftest_print_junit(f, res);
+		ok = !ferror(f);
+		ok = !fclose(f) && ok;
+	} else {
+		ok = false;
+	}
+	if (!ok) {
+		snprintf(err, sizeof(err), "out of memory");
+		atomic_abort(p);
+	} else {
+		ok = !atomic_commit(p, buf, len, err, sizeof(err));
+	}
 	if (!ok)
-		fprintf(stderr, "as9888-calibd: cannot write %s\n", path);
+		fprintf(stderr, "as9888-calibd: cannot write %s: %s\n", path, err);
+	free(buf);
 
 	return ok;
 }
@@ -44,23 +103,23 @@ int cmd_factory_test(const struct cli_opts *o)
 {
 	struct ftest_result res = { 0 };
 	bool stored = false, junit_ok = true;
-	FILE *junit = NULL;
+	struct atomic_pending junit;
 	int ret;
 
-	if (o->junit_path && !(junit = open_junit(o->junit_path)))
+	if (o->junit_path && begin_junit(o->junit_path, &junit))
 		return EXIT_FAILURE;
 	if (session_lock(o->record_path, o->lock_timeout_s) < 0 ||
 	    session_run_test(o, &o->ftest, &res)) {
-		if (junit)
-			fclose(junit);
+		if (o->junit_path)
+			atomic_abort(&junit);
 		return EXIT_FAILURE;
 	}
 
 	if (res.have_calibration && !report_first_failure(&res.report))
 		stored = session_store_result(o, &res, false);
 
-	if (junit)
-		junit_ok = write_junit(junit, o->junit_path, &res);
+	if (o->junit_path)
+		junit_ok = write_junit(&junit, o->junit_path, &res);
 	if (o->json) {
 		ftest_print_json(stdout, &res, o->record_path, stored);
 	} else {

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
 /* The factory test's report as text or JSON. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "ftest_print.h"
 #include "json.h"
@@ -160,6 +162,9 @@ void ftest_print_text(FILE *out, const struct ftest_result *res)
 }
 
 
+/* A failure's type (the Ant schema wants one): a judgment outside its limits */
+#define JUNIT_FAILURE_TYPE	"as9888.judgment"
+
 /* @s as XML character data or attribute value */
 static void xml_text(FILE *out, const char *s)
 {
@@ -199,7 +204,7 @@ void ftest_print_junit(FILE *out, const struct ftest_result *res)
 {
 	const struct report *r = &res->report;
 	size_t i, failures = 0, skipped = 0;
-	char chip[20] = "", stamp[32] = "";
+	char chip[20] = "", stamp[32] = "", host[HOST_NAME_MAX + 1];
 	time_t t = (time_t)res->started;
 	struct tm tm;
 
@@ -213,12 +218,19 @@ void ftest_print_junit(FILE *out, const struct ftest_result *res)
 	if (res->started && gmtime_r(&t, &tm))
 		strftime(stamp, sizeof(stamp), "%Y-%m-%dT%H:%M:%S", &tm);
 
+	if (gethostname(host, sizeof(host)))
+		snprintf(host, sizeof(host), "localhost");
+	host[sizeof(host) - 1] = '\0';
+
+	/* Jenkins' junit-10.xsd: no "skipped" on <testsuites>, only on <testsuite> */
 	fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", out);
-	fprintf(out, "<testsuites name=\"as9888-calibd factory-test\" tests=\"%zu\" failures=\"%zu\" skipped=\"%zu\" errors=\"0\" time=\"%.6f\">\n",
-		r->count, failures, skipped, res->duration_ns / 1e9);
-	fprintf(out, "  <testsuite name=\"%s\" tests=\"%zu\" failures=\"%zu\" skipped=\"%zu\" errors=\"0\" time=\"%.6f\" timestamp=\"%s\">\n",
+	fprintf(out, "<testsuites name=\"as9888-calibd factory-test\" tests=\"%zu\" failures=\"%zu\" errors=\"0\" time=\"%.6f\">\n",
+		r->count, failures, res->duration_ns / 1e9);
+	fprintf(out, "  <testsuite name=\"%s\" tests=\"%zu\" failures=\"%zu\" skipped=\"%zu\" errors=\"0\" time=\"%.6f\" timestamp=\"%s\" hostname=\"",
 		FTEST_REPORT_SCHEMA, r->count, failures, skipped,
 		res->duration_ns / 1e9, stamp);
+	xml_text(out, host);
+	fputs("\" id=\"0\" package=\"as9888-calibd\">\n", out);
 	fputs("    <properties>\n", out);
 	xml_property(out, "tool_version", AS9888_VERSION);
 	xml_property(out, "backend", res->backend);
@@ -235,7 +247,8 @@ void ftest_print_junit(FILE *out, const struct ftest_result *res)
 		xml_text(out, j->name);
 		fputs("\" time=\"0\">", out);
 		if (j->result != JUDGMENT_PASS) {
-			fputs(j->result == JUDGMENT_FAIL ? "\n      <failure message=\"" :
+			fputs(j->result == JUDGMENT_FAIL ?
+			      "\n      <failure type=\"" JUNIT_FAILURE_TYPE "\" message=\"" :
 			      "\n      <skipped message=\"", out);
 			xml_text(out, j->measured);
 			if (j->limits[0]) {
@@ -249,5 +262,6 @@ void ftest_print_junit(FILE *out, const struct ftest_result *res)
 		xml_text(out, j->measured);
 		fputs("</system-out></testcase>\n", out);
 	}
+	fputs("    <system-out></system-out>\n    <system-err></system-err>\n", out);
 	fputs("  </testsuite>\n</testsuites>\n", out);
 }

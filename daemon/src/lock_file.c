@@ -17,6 +17,7 @@
 int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen)
 {
 	struct stat st;
+	mode_t loose;
 	int fd;
 
 	fd = open(path, O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY |
@@ -31,6 +32,20 @@ int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen
 		snprintf(err, errlen, "lock %s is not a regular file: remove it", path);
 		close(fd);
 		return -EINVAL;
+	}
+	/*
+	 * flock() works on a descriptor opened read-only: a lock others may
+	 * read is one they may hold. One made looser (by an older version,
+	 * or by hand) is tightened to @mode when it is ours; one that others
+	 * could write is left as it is, for the caller's trust check to refuse.
+	 */
+	loose = st.st_mode & 0777 & ~(mode_t)mode;
+	if (loose && !(loose & (S_IWGRP | S_IWOTH)) && st.st_uid == geteuid() &&
+	    fchmod(fd, (mode_t)mode)) {
+		snprintf(err, errlen, "cannot make lock %s private (chmod %04o): %s",
+			 path, mode, strerror(errno));
+		close(fd);
+		return -EPERM;
 	}
 
 	return fd;

@@ -8,7 +8,10 @@
 /*
  * Open (creating it with @mode) the lock file @path: never through a
  * symbolic link, never blocking on a FIFO or device put there, and only a
- * regular file. The fd, or -errno with the reason in @err.
+ * regular file. Whoever may open the file may flock() it, even read-only:
+ * @mode must let nobody else read it (0600), and a lock of ours with
+ * looser permissions is tightened to @mode. The fd, or -errno with the
+ * reason in @err.
  */
 int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen);
 

@@ -36,12 +36,16 @@ int record_pair_replace(const char *path, const char *cur, size_t cur_len,
 			const char *prev, size_t prev_len, unsigned int mode,
 			char *err, size_t errlen);
 
+struct storage_trust;
+
 /*
  * Finish or undo a change that was interrupted (call with the record's
- * lock held). 0 with what was done in @what, or -errno with the reason
- * and the fix in @err.
+ * lock held). The journal is acted on only when @trust believes it (its
+ * owner and mode, storage_trust.h) and it is a valid record; otherwise
+ * nothing is changed. 0 with what was done in @what, or -errno with the
+ * reason and the fix in @err.
  */
-int record_pair_recover(const char *path, enum record_pair_recovery *what,
-			char *err, size_t errlen);
+int record_pair_recover(const char *path, const struct storage_trust *trust,
+			enum record_pair_recovery *what, char *err, size_t errlen);
 
 #endif

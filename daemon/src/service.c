@@ -15,8 +15,12 @@
  * requests that use the chip or write the record (and the application on
  * a device's appearance) run one at a time, in the order they came, each
  * in its own child, while the loop goes on. At most CLIENTS_MAX clients
- * are served at once; more are told "busy". SIGPIPE is ignored: a client
- * that hangs up only loses its answer.
+ * are served at once; more are told "busy". No user can take them all:
+ * each user but root holds at most CLIENTS_PER_UID connections, and all of
+ * them together leave CLIENTS_ROOT_RESERVED to root; a user over its share
+ * loses its oldest connection that has not sent its request line yet (the
+ * idle one) to the new one, or is told "busy". SIGPIPE is ignored: a
+ * client that hangs up only loses its answer.
  * Who may ask is decided by the socket's file permissions; the requester of
  * every request that changes the record or the device is logged.
  */
@@ -43,7 +47,14 @@
 #include "uevent.h"
 
 /* Clients connected at once (reading, waiting or being served) */
-#define CLIENTS_MAX		16
+#define CLIENTS_MAX		32
+/* What one user other than root may hold of them, and what root keeps */
+#define CLIENTS_PER_UID		4
+#define CLIENTS_ROOT_RESERVED	8
+/* Connections taken per round of the loop: a flood starves nothing else */
+#define ACCEPTS_PER_ROUND	64
+/* Clients refused as busy are logged at most this often, with their count */
+#define REFUSAL_LOG_MS		10000
 /* A client has this long from connecting to send its whole request line */
 #define REQUEST_DEADLINE_MS	5000
 /*
@@ -70,6 +81,8 @@ struct client {
 	size_t len;
 	struct request req;
 	char peer[PEER_DESC_LEN];
+	uid_t uid;
+	uint64_t seq;			/* order of connection */
 	pid_t pid;
 };
 
@@ -80,6 +93,9 @@ struct service {
 	int signal_fd;
 	struct client clients[CLIENTS_MAX];
 	uint64_t arrivals;
+	uint64_t connections;
+	unsigned long refused;		/* as busy, since the last log line */
+	uint64_t refusal_log_ms;
 	bool chip_busy;			/* an exclusive child runs */
 	bool apply_wanted;		/* a device appeared: apply when the chip is free */
 	char apply_dev[IIO_PATH_MAX];
@@ -329,30 +345,86 @@ static void client_read(struct service *s, struct client *c)
 	}
 }
 
+/* A client refused as busy: counted, and logged now and then */
+static void note_refusal(struct service *s, const char *peer)
+{
+	uint64_t now = monotonic_ms();
+
+	s->refused++;
+	if (s->refusal_log_ms && now < s->refusal_log_ms + REFUSAL_LOG_MS)
+		return;
+	log_msg("%lu client(s) refused as busy in %d s (the last: %s)", s->refused,
+		REFUSAL_LOG_MS / 1000, peer);
+	s->refused = 0;
+	s->refusal_log_ms = now;
+}
+
+/*
+ * A slot for a new client of @uid: a free one within @uid's share, else
+ * the one of @uid's own oldest connection still without a request line
+ * (told busy); NULL when there is neither.
+ */
+static struct client *slot_for(struct service *s, uid_t uid)
+{
+	struct client *free_slot = NULL, *idle = NULL;
+	unsigned int i, same = 0, users = 0;
+	bool fits;
+
+	for (i = 0; i < CLIENTS_MAX; i++) {
+		struct client *c = &s->clients[i];
+
+		if (c->state == CLIENT_FREE) {
+			free_slot = free_slot ? free_slot : c;
+			continue;
+		}
+		users += c->uid != 0;
+		if (c->uid != uid)
+			continue;
+		same++;
+		if (c->state == CLIENT_READING && (!idle || c->seq < idle->seq))
+			idle = c;
+	}
+	fits = free_slot && (uid == 0 || (same < CLIENTS_PER_UID &&
+		users < CLIENTS_MAX - CLIENTS_ROOT_RESERVED));
+	if (fits)
+		return free_slot;
+	if (!idle)
+		return NULL;
+	note_refusal(s, idle->peer);
+	client_refuse(idle, "error: busy: a newer connection of the same user took this one's place; send the request line at once\n",
+		      EXIT_FAILURE);
+
+	return idle;
+}
+
 static void accept_clients(struct service *s)
 {
-	unsigned int i;
+	unsigned int n;
 	int fd;
 
-	while ((fd = accept4(s->sock.fd, NULL, NULL, SOCK_CLOEXEC)) >= 0) {
-		struct client *c = NULL;
+	for (n = 0; n < ACCEPTS_PER_ROUND &&
+	     (fd = accept4(s->sock.fd, NULL, NULL, SOCK_CLOEXEC)) >= 0; n++) {
+		char peer[PEER_DESC_LEN];
+		uid_t uid = peer_describe(fd, peer);
+		struct client *c = slot_for(s, uid);
 
-		for (i = 0; i < CLIENTS_MAX && !c; i++)
-			if (s->clients[i].state == CLIENT_FREE)
-				c = &s->clients[i];
 		if (!c) {
 			struct client busy = { .fd = fd };
 
 			client_refuse(&busy, "error: busy: too many requests at once; try again later\n",
 				      EXIT_FAILURE);
-			log_msg("a client refused: %d connections already", CLIENTS_MAX);
+			note_refusal(s, peer);
 			continue;
 		}
 		memset(c, 0, sizeof(*c));
 		c->fd = fd;
 		c->state = CLIENT_READING;
 		c->deadline_ms = monotonic_ms() + REQUEST_DEADLINE_MS;
-		peer_describe(fd, c->peer);
+		c->uid = uid;
+		c->seq = s->connections++;
+		memcpy(c->peer, peer, sizeof(c->peer));
+		/* a client sends its line with its connection: take it now */
+		client_read(s, c);
 	}
 }
 
@@ -564,20 +636,17 @@ static int serve_once(struct service *s)
 
 /*
  * At start: a change of the record that a crash interrupted is finished or
- * undone before anything reads the record (session_lock() does it).
+ * undone before anything reads the record, without waiting for the lock (a
+ * command holding it has done that): status is answered at once.
  */
 static void recover_record(const struct cli_opts *o)
 {
 	char journal[PATH_MAX];
-	int fd;
 
 	snprintf(journal, sizeof(journal), "%s%s", o->record_path,
 		 RECORD_PAIR_JOURNAL);
-	if (access(journal, F_OK))
-		return;
-	fd = session_lock(o->record_path, o->lock_timeout_s);
-	if (fd >= 0)
-		close(fd);
+	if (!access(journal, F_OK))
+		session_recover_now(o->record_path);
 }
 
 /* At start: every AS9888 IIO device already there gets its calibration */
@@ -598,14 +667,15 @@ int cmd_daemon(const struct cli_opts *o)
 
 	for (i = 0; i < CLIENTS_MAX; i++)
 		s.clients[i].fd = -1;
+	/* first: a descriptor passed as fd 3 is checked before we open any */
+	if (service_socket_open(o, &s.sock, err, sizeof(err))) {
+		log_msg("%s", err);
+		return EXIT_FAILURE;
+	}
 	s.signal_fd = open_signals();
 	if (s.signal_fd < 0) {
 		log_msg("cannot set up signals: %s", strerror(errno));
-		return EXIT_FAILURE;
-	}
-	if (service_socket_open(o, &s.sock, err, sizeof(err))) {
-		log_msg("%s", err);
-		close(s.signal_fd);
+		service_socket_close(o, &s.sock);
 		return EXIT_FAILURE;
 	}
 	s.uevent_fd = uevent_open();

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <grp.h>
 #include <limits.h>
+#include <stdbool.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,23 +17,9 @@
 #include "remedy.h"
 #include "service_socket.h"
 
-#define LISTEN_BACKLOG		16
+/* Connections the kernel holds for us between two accept() rounds */
+#define LISTEN_BACKLOG		64
 #define SD_LISTEN_FDS_START	3
-
-/* A socket passed by systemd (LISTEN_PID/LISTEN_FDS), or -1 */
-static int activated_socket(void)
-{
-	const char *pid = getenv("LISTEN_PID"), *fds = getenv("LISTEN_FDS");
-
-	if (!pid || !fds || atol(pid) != (long)getpid() || atoi(fds) != 1)
-		return -1;
-	unsetenv("LISTEN_PID");
-	unsetenv("LISTEN_FDS");
-	unsetenv("LISTEN_FDNAMES");
-	fcntl(SD_LISTEN_FDS_START, F_SETFD, FD_CLOEXEC);
-
-	return SD_LISTEN_FDS_START;
-}
 
 /*
  * Is a process listening on the socket file at @addr? Connecting tells:
@@ -96,12 +83,66 @@ static int check_listening(int fd, const char *what, char *err, size_t errlen)
 	len = sizeof(int);
 	if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &len) || type != SOCK_STREAM)
 		return fail(err, errlen, EPROTOTYPE,
-			    "%s: descriptor %d is not a stream socket (the .rc's socket line must say stream)",
+			    "%s: descriptor %d is not a stream socket (ListenStream= in the socket unit, \"stream\" in the .rc's socket line)",
 			    what, fd);
 	len = sizeof(int);
 	if (getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &len) || !listening)
 		return fail(err, errlen, EINVAL,
 			    "%s: descriptor %d is not listening", what, fd);
+
+	return 0;
+}
+
+/* A whole decimal number, nothing before or after it */
+static bool parse_count(const char *s, long *n)
+{
+	char *end;
+
+	if (*s < '0' || *s > '9')
+		return false;
+	errno = 0;
+	*n = strtol(s, &end, 10);
+
+	return !errno && !*end && *n <= INT_MAX;
+}
+
+/*
+ * The socket passed by systemd (sd_listen_fds(3)): LISTEN_PID names this
+ * process and LISTEN_FDS says how many descriptors follow fd 3. 0 with the
+ * descriptor in *@fd, or with -1 when none was passed to this process;
+ * -errno with the reason in @err when the variables are malformed or fd 3
+ * is anything but one listening Unix stream socket (a TCP socket would
+ * bypass the socket file's permissions; anything else would never be
+ * served).
+ */
+static int activated_socket(int *fd, char *err, size_t errlen)
+{
+	const char *pid = getenv("LISTEN_PID"), *fds = getenv("LISTEN_FDS");
+	long p, n;
+	int ret;
+
+	*fd = -1;
+	if (!pid && !fds)
+		return 0;
+	if (!pid || !parse_count(pid, &p))
+		return fail(err, errlen, EINVAL,
+			    "LISTEN_PID=\"%.32s\" is not a process id: start the daemon from its socket unit, or unset LISTEN_PID and LISTEN_FDS",
+			    pid ? pid : "");
+	if (p != (long)getpid())
+		return 0;	/* meant for another process */
+	if (!fds || !parse_count(fds, &n) || n != 1)
+		return fail(err, errlen, EINVAL,
+			    "LISTEN_FDS=\"%.32s\": exactly one socket must be passed (as9888-calibd.socket has one ListenStream=)",
+			    fds ? fds : "");
+	ret = check_listening(SD_LISTEN_FDS_START, "the socket passed by systemd (LISTEN_FDS)",
+			      err, errlen);
+	if (ret)
+		return ret;
+	unsetenv("LISTEN_PID");
+	unsetenv("LISTEN_FDS");
+	unsetenv("LISTEN_FDNAMES");
+	fcntl(SD_LISTEN_FDS_START, F_SETFD, FD_CLOEXEC);
+	*fd = SD_LISTEN_FDS_START;
 
 	return 0;
 }
@@ -118,16 +159,13 @@ static int android_socket(int *fd, char *err, size_t errlen)
 {
 	const char *v = getenv(ANDROID_SOCKET_ENV);
 	char what[64];
-	char *end;
 	long n;
 	int ret;
 
 	*fd = -1;
 	if (!v)
 		return 0;
-	errno = 0;
-	n = strtol(v, &end, 10);
-	if (end == v || *end || errno || n < 0 || n > INT_MAX)
+	if (!parse_count(v, &n))
 		return fail(err, errlen, EINVAL,
 			    "%s=\"%.32s\" is not a descriptor number: start the daemon from init with \"socket %s stream 0660 root system\" in its .rc, or unset the variable",
 			    ANDROID_SOCKET_ENV, v, ANDROID_SOCKET_NAME);
@@ -183,7 +221,9 @@ int service_socket_open(const struct cli_opts *o, struct service_socket *s,
 	int fd, ret;
 
 	memset(s, 0, sizeof(*s));
-	s->fd = activated_socket();
+	ret = activated_socket(&s->fd, err, errlen);
+	if (ret)
+		return ret;
 	if (s->fd < 0) {
 		ret = android_socket(&s->fd, err, errlen);
 		if (ret)
@@ -245,15 +285,17 @@ void service_socket_close(const struct cli_opts *o, struct service_socket *s)
 	s->fd = -1;
 }
 
-void peer_describe(int fd, char desc[PEER_DESC_LEN])
+uid_t peer_describe(int fd, char desc[PEER_DESC_LEN])
 {
 	struct ucred cred;
 	socklen_t len = sizeof(cred);
 
-	if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len))
+	if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len)) {
 		snprintf(desc, PEER_DESC_LEN, "unknown peer");
-	else
-		snprintf(desc, PEER_DESC_LEN, "uid %u gid %u pid %ld",
-			 (unsigned int)cred.uid, (unsigned int)cred.gid,
-			 (long)cred.pid);
+		return PEER_UID_UNKNOWN;
+	}
+	snprintf(desc, PEER_DESC_LEN, "uid %u gid %u pid %ld",
+		 (unsigned int)cred.uid, (unsigned int)cred.gid, (long)cred.pid);
+
+	return cred.uid;
 }

@@ -22,8 +22,8 @@ struct service_socket {
 
 /*
  * The socket passed by systemd (LISTEN_FDS), else the one passed by
- * Android init (ANDROID_SOCKET_ENV; set to anything but a listening Unix
- * stream socket, it is an error), else a new one at @o->socket_path with
+ * Android init (ANDROID_SOCKET_ENV); either set to anything but one
+ * listening Unix stream socket is an error, else a new one at @o->socket_path with
  * @o's mode and group. A socket file another process still listens on is
  * never replaced: the call fails, saying so; a stale one (nobody
  * listening) is. 0, or -errno with the reason in @err.
@@ -36,7 +36,12 @@ void service_socket_close(const struct cli_opts *o, struct service_socket *s);
 
 #define PEER_DESC_LEN	64
 
-/* "uid U gid G pid P" of the process that connected @fd, or "unknown peer" */
-void peer_describe(int fd, char desc[PEER_DESC_LEN]);
+#define PEER_UID_UNKNOWN	((uid_t)-1)
+
+/*
+ * "uid U gid G pid P" of the process that connected @fd, or "unknown
+ * peer"; its uid, or PEER_UID_UNKNOWN
+ */
+uid_t peer_describe(int fd, char desc[PEER_DESC_LEN]);
 
 #endif

@@ -110,6 +110,9 @@ int session_load_record(const char *path, struct calib_record *rec)
 	return len < 0 ? (int)len : 0;
 }
 
+/* 9999-12-31T23:59:59Z: the record's "created" has four digits for the year */
+#define LAST_RECORD_TIME	253402300799LL
+
 /*
  * Write @rec (stamped now) to @path crash-safely. With @keep_previous, the
  * record at @path is first saved as <path>.previous, so that a bad
@@ -122,11 +125,21 @@ int session_save_record(const char *path, struct calib_record *rec,
 	long old_len;
 	int len, ret;
 
+	struct calib_record check;
+	char why[256];
+
 	rec->created = (int64_t)time(NULL);
 	len = record_format(rec, buf, sizeof(buf));
 	if (len < 0) {
 		snprintf(err, errlen, "cannot format the record: %s", strerror(-len));
 		return len;
+	}
+	/* what show, restore and rollback would refuse is never saved */
+	if (record_parse(buf, (size_t)len, &check, why, sizeof(why))) {
+		snprintf(err, errlen, "cannot make a valid record (%s)%s; nothing written",
+			 why, rec->created < 0 || rec->created > LAST_RECORD_TIME ?
+			 ": the system clock is outside 1970-9999, set it first" : "");
+		return -EINVAL;
 	}
 	ret = ensure_parent_dir(path, STATE_DIR_MODE, err, errlen);
 	if (ret)
@@ -150,7 +163,7 @@ static int recover(const char *path)
 	char err[SESSION_ERR_LEN];
 	int ret;
 
-	ret = record_pair_recover(path, &what, err, sizeof(err));
+	ret = record_pair_recover(path, &trust, &what, err, sizeof(err));
 	if (ret)
 		fprintf(stderr, "as9888-calibd: %s\n", err);
 	else if (what == RECORD_PAIR_UNDONE)
@@ -201,34 +214,44 @@ static int check_lock(const char *lock, int fd, char *err, size_t errlen)
 	return storage_trust_file(&trust, lock, &st, err, errlen);
 }
 
-/*
- * Commands that change the record take <path>.lock exclusively, so two of
- * them (a factory run and a recalibration, two recalibrations) never
- * interleave their writes; the second waits for the first, up to
- * @timeout_s, saying that it waits.
- */
-int session_lock(const char *path, unsigned int timeout_s)
+/* Open <@path>.lock, checked and trusted; the fd or -errno (said) */
+static int open_lock(const char *path, char *lock, size_t size)
 {
-	char lock[PATH_MAX], err[SESSION_ERR_LEN];
+	char err[SESSION_ERR_LEN];
 	int fd, ret;
 
 	ret = check_record_path(path, err, sizeof(err));
-	if (!ret && snprintf(lock, sizeof(lock), "%s%s", path, SESSION_LOCK_SUFFIX) >=
-		    (int)sizeof(lock)) {
+	if (!ret && snprintf(lock, size, "%s%s", path, SESSION_LOCK_SUFFIX) >=
+		    (int)size) {
 		snprintf(err, sizeof(err), "record path %s is too long", path);
 		ret = -ENAMETOOLONG;
 	}
-	fd = ret ? ret : lock_file_open(lock, RECORD_MODE, err, sizeof(err));
+	fd = ret ? ret : lock_file_open(lock, LOCK_MODE, err, sizeof(err));
 	if (fd >= 0 && (ret = check_lock(lock, fd, err, sizeof(err)))) {
 		close(fd);
 		fd = ret;
 	}
-	if (fd < 0) {
+	if (fd < 0)
 		print_with_remedy(err, -fd);
+
+	return fd;
+}
+
+/*
+ * <@path>.lock taken (waiting up to @timeout_s with @wait, saying so) and
+ * an interrupted change recovered: the fd, -EWOULDBLOCK (silent) when
+ * another holds it and we do not @wait, or -errno (said)
+ */
+static int take_lock(const char *path, bool wait, unsigned int timeout_s)
+{
+	char lock[PATH_MAX];
+	int fd, ret;
+
+	fd = open_lock(path, lock, sizeof(lock));
+	if (fd < 0)
 		return fd;
-	}
 	ret = lock_file_try(fd);
-	if (ret == -EWOULDBLOCK) {
+	if (ret == -EWOULDBLOCK && wait) {
 		fprintf(stderr, "as9888-calibd: %s is held by another command; waiting up to %u s\n",
 			lock, timeout_s);
 		ret = lock_file_wait(fd, timeout_s * 1000);
@@ -236,7 +259,7 @@ int session_lock(const char *path, unsigned int timeout_s)
 	if (ret == -ETIMEDOUT)
 		fprintf(stderr, "as9888-calibd: %s is still held after %u s: another as9888-calibd command is running, or some process holds it (fuser -v %s shows which); nothing done\n",
 			lock, timeout_s, lock);
-	else if (ret)
+	else if (ret && ret != -EWOULDBLOCK)
 		fprintf(stderr, "as9888-calibd: cannot lock %s: %s\n", lock,
 			strerror(-ret));
 	if (!ret)
@@ -247,6 +270,29 @@ int session_lock(const char *path, unsigned int timeout_s)
 	}
 
 	return fd;
+}
+
+/*
+ * Commands that change the record take <path>.lock exclusively, so two of
+ * them (a factory run and a recalibration, two recalibrations) never
+ * interleave their writes; the second waits for the first, up to
+ * @timeout_s, saying that it waits.
+ */
+int session_lock(const char *path, unsigned int timeout_s)
+{
+	return take_lock(path, true, timeout_s);
+}
+
+int session_recover_now(const char *path)
+{
+	int fd = take_lock(path, false, 0);
+
+	if (fd == -EWOULDBLOCK)
+		return 0;	/* its holder has recovered */
+	if (fd >= 0)
+		close(fd);
+
+	return fd < 0 ? fd : 0;
 }
 
 /*

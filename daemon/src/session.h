@@ -14,6 +14,8 @@
 #include "transport.h"
 
 #define RECORD_MODE		0644
+/* Nobody else may open the lock: flock() needs only read access (lock_file.h) */
+#define LOCK_MODE		0600
 #define STATE_DIR_MODE		0755
 #define SESSION_ERR_LEN		512
 #define SESSION_PREVIOUS_SUFFIX	RECORD_PAIR_PREVIOUS
@@ -63,6 +65,12 @@ int session_activate_record(const struct cli_opts *o,
  * or -errno (said on stderr).
  */
 int session_lock(const char *path, unsigned int timeout_s);
+
+/*
+ * The same recovery without waiting: done now when nobody holds the lock;
+ * when a command holds it, that command has done it. 0 or -errno (said).
+ */
+int session_recover_now(const char *path);
 
 /*
  * Apply the record at @record_path to the AS9888 IIO device at @dir: the

@@ -6,7 +6,8 @@
 # with nothing lost. Output is TAP.
 set -u
 
-calibd=${1:?usage: cli.sh PATH-TO-as9888-calibd}
+calibd=${1:?usage: cli.sh PATH-TO-as9888-calibd [PATH-TO-clock_preload.so]}
+preload=${2:-}
 work=$(mktemp -d /tmp/as9888-cli-XXXXXX)
 trap 'rm -rf "$work"' EXIT
 export ASAN_OPTIONS=detect_leaks=1
@@ -40,6 +41,18 @@ run factory-test --backend sim --int1-line 3 --record "$rec"
 check "sim backend with a raw option: exit 2" test $rc -eq 2
 run factory-test --backend raw --i2c-address 0x10 --record "$rec"
 check "raw backend, address outside 0x0c..0x0f: exit 2" test $rc -eq 2
+# numbers with something before them (strtoul() skips blanks and takes a sign)
+for bad in " 1" "+660" " 0660" "-1"; do
+	# bounded: a daemon that takes the mode serves until killed
+	timeout -s KILL 30 "$calibd" daemon --backend sim --socket "$work/never.sock" \
+		--socket-mode "$bad" --record "$rec" >"$work/out" 2>"$work/err"
+	rc=$?
+	check "daemon --socket-mode \"$bad\": exit 2, named, no socket" \
+		eval '[ $rc -eq 2 ] && says "socket-mode takes an octal mode" err && [ ! -e "$work/never.sock" ]'
+	rm -f "$work/never.sock"
+done
+run factory-test --backend raw --i2c-address " 0x0c" --record "$rec"
+check "raw backend, address \" 0x0c\": exit 2" eval '[ $rc -eq 2 ] && [ ! -e "$rec" ]'
 
 run factory-test $vt --record "$rec" --json
 check "factory-test --json: pass, exit 0" test $rc -eq 0
@@ -55,6 +68,33 @@ cp "$rec" "$work/good"
 check "the report states the backend" json "d['backend'] == 'sim'"
 check "a record made on the simulator says so (source = simulator)" \
 	grep -qx "source = simulator" "$rec"
+
+# A clock outside 1970-9999 (issue 25, point 7): time() made to say so by
+# clock_preload.so; recalibrate and factory-test refuse to store a record
+# that show, restore and rollback would then reject, and say why
+if [ -n "$preload" ]; then
+	for t in 253402300800 -86400; do
+		cp "$work/good" "$work/clock-rec"
+		AS9888_TEST_TIME=$t LD_PRELOAD=$preload ASAN_OPTIONS=detect_leaks=1:verify_asan_link_order=0 \
+			"$calibd" recalibrate $vt --record "$work/clock-rec" >"$work/out" 2>"$work/err"
+		rc=$?
+		check "recalibrate with the clock at $t s: FAIL at step 4-1 naming the clock, record unchanged, no previous" \
+			eval '[ $rc -eq 1 ] && says "FAIL at step 4-1" out && says "the system clock is outside 1970-9999, set it first" out &&
+			      cmp -s "$work/clock-rec" "$work/good" && [ ! -e "$work/clock-rec.previous" ] &&
+			      "$calibd" show --record "$work/clock-rec" >/dev/null'
+		AS9888_TEST_TIME=$t LD_PRELOAD=$preload ASAN_OPTIONS=detect_leaks=1:verify_asan_link_order=0 \
+			"$calibd" factory-test $vt --record "$work/clock-new" >"$work/out" 2>"$work/err"
+		rc=$?
+		check "factory-test with the clock at $t s: FAIL at step 4-1, no record written" \
+			eval '[ $rc -eq 1 ] && says "FAIL at step 4-1" out && [ ! -e "$work/clock-new" ]'
+	done
+	AS9888_TEST_TIME=253402300799 LD_PRELOAD=$preload ASAN_OPTIONS=detect_leaks=1:verify_asan_link_order=0 \
+		"$calibd" factory-test $vt --record "$work/clock-new" >/dev/null 2>&1
+	check "the clock at the last second of 9999: a valid record (the limit is the format's)" \
+		eval '"$calibd" show --record "$work/clock-new" >/dev/null && grep -q "^created = 9999-12-31T23:59:59Z" "$work/clock-new"'
+else
+	check "clock_preload.so given (the second argument)" false
+fi
 
 # No --backend: the driver, else the raw bus, else a failure; never the simulator
 mkdir -p "$work/sys"

@@ -94,7 +94,60 @@ check "--junit: a failing run's failures are the JSON report's, in order (3-12 f
 "$calibd" factory-test $vt --record "$work/rec-x" --junit "$work/no/such/dir/x.xml" >"$work/junit.out" 2>"$work/junit.err"
 rc=$?
 check "--junit to a path that cannot be written: exit 1 before the test, said, no record" \
-	eval '[ $rc -eq 1 ] && grep -q "cannot write" "$work/junit.err" && [ ! -s "$work/junit.out" ] && [ ! -e "$work/rec-x" ]'
+	eval '[ $rc -eq 1 ] && grep -q "cannot write the JUnit report: cannot open directory $work/no/such/dir" "$work/junit.err" &&
+	      [ ! -s "$work/junit.out" ] && [ ! -e "$work/rec-x" ]'
+
+# Jenkins' rules for JUnit XML (tests/daemon/junit.xsd restates junit-10.xsd):
+# both reports validate, and a report with "skipped" on <testsuites> would not
+junit_schema=$top/tests/daemon/junit.xsd
+xsd_valid() { xmllint --noout --schema "$junit_schema" "$@" >"$work/check" 2>&1; }
+if command -v xmllint >/dev/null; then
+	check "--junit: the passing and the failing run's XML validate against Jenkins' junit-10 rules (xmllint)" \
+		xsd_valid "$work/pass.xml" "$work/fail.xml"
+	sed 's/<testsuites \(.*\) errors=/<testsuites \1 skipped="0" errors=/' "$work/fail.xml" >"$work/skipped.xml"
+	check "the schema refuses \"skipped\" on <testsuites> (the check can fail)" \
+		eval '! xsd_valid "$work/skipped.xml" && grep -q "attribute .skipped.: The attribute .skipped. is not allowed" "$work/check"'
+	check "--junit: a failure has a type and the suite a hostname (the Ant schema wants both)" \
+		eval 'grep -q "<failure type=\"as9888.judgment\" message=" "$work/fail.xml" &&
+		      grep -q "<testsuite [^>]* hostname=\"[^\"]" "$work/fail.xml"'
+else
+	check "xmllint is installed (libxml2-utils; scripts/setup.sh installs it)" false
+fi
+
+# --junit never writes through a symbolic link or into anything but its own
+# report (issue 25, point 5): a planted link, a device, a FIFO, another
+# file, a hard link are refused before the test, and nothing is changed
+junit_refused() {
+	local target=$1
+	shift
+	rm -f "$work/rec-j"
+	timeout 60 "$calibd" factory-test $vt --record "$work/rec-j" --junit "$target" \
+		>"$work/junit.out" 2>"$work/junit.err"
+	rc=$?
+	[ $rc -eq 1 ] && [ ! -s "$work/junit.out" ] && [ ! -e "$work/rec-j" ] &&
+		grep -q "cannot write the JUnit report: .*$1" "$work/junit.err"
+}
+printf 'root:secret:1:0:99999:7:::\n' >"$work/victim"
+cp "$work/victim" "$work/victim.orig"
+ln -s "$work/victim" "$work/link.xml"
+check "--junit through a planted symbolic link: refused before the test, its target untouched" \
+	eval 'junit_refused "$work/link.xml" "is a symbolic link" && cmp -s "$work/victim" "$work/victim.orig" &&
+	      [ -L "$work/link.xml" ]'
+check "--junit naming another file (not a report): refused, the file untouched" \
+	eval 'junit_refused "$work/victim" "not a JUnit report" && cmp -s "$work/victim" "$work/victim.orig"'
+check "--junit naming a device: refused" junit_refused /dev/null "not a regular file"
+mkfifo "$work/fifo.xml"
+check "--junit naming a FIFO: refused without waiting for a reader" \
+	junit_refused "$work/fifo.xml" "not a regular file"
+cp "$work/pass.xml" "$work/old.xml"
+ln "$work/old.xml" "$work/hardlink.xml"
+check "--junit naming a report with another hard link: refused, unchanged" \
+	eval 'junit_refused "$work/hardlink.xml" "other hard links" && cmp -s "$work/old.xml" "$work/pass.xml"'
+rm -f "$work/hardlink.xml"
+report again "fault = saturate_z" --junit "$work/old.xml"
+check "--junit naming an older report: replaced by the new one, no temporary file left" \
+	eval 'grep -q "failures=\"[1-9]" "$work/old.xml" && [ ! -e "$work/old.xml.new" ] &&
+	      [ "$(stat -c %a "$work/old.xml")" = 644 ]'
 
 mkdir -p "$work/tampered"
 AS9888_REPORT_DIR=$work/tampered "$judgments" >"$work/judgments.log" 2>&1

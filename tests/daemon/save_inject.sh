@@ -86,12 +86,16 @@ fi
 # The record and its previous one as a pair (daemon/src/record_pair.h):
 # rollback, recalibrate and factory-test are each interrupted at every
 # system call that touches the record's files (a SIGKILL, standing in for
-# a power cut), or see ENOSPC at every write, fsync and close and EROFS at
-# every open, rename, unlink and fchmod. Then one rollback follows (it
-# finishes or undoes what was interrupted, then swaps), and the pair must
-# be what the old pair or the new pair gives after that swap: no record is
-# ever lost or duplicated, and no temporary or journal file stays.
+# a power cut), or see EIO at every one of them (rollback and recalibrate),
+# ENOSPC at every write, fsync and close and EROFS at every open, rename,
+# unlink and fchmod. Then one rollback follows (it finishes or undoes what
+# was interrupted, then swaps), and the pair must be what the old pair or
+# the new pair gives after that swap: no record is ever lost or
+# duplicated, and no temporary or journal file stays. And the exit status
+# of rollback and recalibrate tells the truth (issue 25, point 3): 0 when
+# the new pair stands, not 0 when the old one does.
 pair_runs=0
+status_lies=0
 run_sim() { "$calibd" "$@" --backend sim --sim-clock virtual --record "$rec"; }
 run_sim factory-test >/dev/null && run_sim recalibrate --samples 11 >/dev/null ||
 	{ echo "Bail out! no record pair"; exit 1; }
@@ -108,19 +112,24 @@ reset_pair() {
 # is_new FILE: a valid record from the interrupted command (12 samples)
 is_new() { grep -q '^samples = 12$' "$1" && "$calibd" show --record "$1" >/dev/null 2>&1; }
 same() { cmp -s "$1" "$2"; }
-# pair_ok CMD: (record, previous) after CMD and one rollback
-pair_ok() {
+# pair_state CMD: which pair CMD left ("old" or "new"), seen after one
+# rollback; nothing (status 1) when it is neither
+pair_state() {
+	local old=no new=no
 	case $1 in
 	rollback)	# old (R,P) -> (P,R); new (P,R) -> (R,P)
-		{ same "$rec" "$work/P" && same "$rec.previous" "$work/R"; } ||
-			{ same "$rec" "$work/R" && same "$rec.previous" "$work/P"; } ;;
+		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
+		same "$rec" "$work/R" && same "$rec.previous" "$work/P" && new=yes ;;
 	recalibrate)	# old (R,P) -> (P,R); new (N,R) -> (R,N)
-		{ same "$rec" "$work/P" && same "$rec.previous" "$work/R"; } ||
-			{ same "$rec" "$work/R" && is_new "$rec.previous"; } ;;
+		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
+		same "$rec" "$work/R" && is_new "$rec.previous" && new=yes ;;
 	factory-test)	# old (R,P) -> (P,R); new (N,P) -> (P,N)
-		same "$rec" "$work/P" &&
-			{ same "$rec.previous" "$work/R" || is_new "$rec.previous"; } ;;
+		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
+		same "$rec" "$work/P" && is_new "$rec.previous" && new=yes ;;
 	esac
+	[ $old = yes ] && echo old && return 0
+	[ $new = yes ] && echo new && return 0
+	return 1
 }
 # the command's calls on the record's files, each "NAME K" (its K-th NAME)
 calls_of() {
@@ -133,9 +142,11 @@ for cmd in rollback recalibrate factory-test; do
 	args=("$cmd")
 	[ "$cmd" = rollback ] || args+=(--samples 12)
 	while read -r call k; do
-		for action in kill ENOSPC EROFS; do
+		for action in kill EIO ENOSPC EROFS; do
 			case $action:$call in
 			kill:*) inject="$call:signal=KILL:when=$k" ;;
+			EIO:*) [ "$cmd" = factory-test ] && continue
+				inject="$call:error=EIO:when=$k" ;;
 			ENOSPC:write|ENOSPC:fsync|ENOSPC:close) inject="$call:error=ENOSPC:when=$k" ;;
 			EROFS:openat|EROFS:rename|EROFS:renameat|EROFS:renameat2|EROFS:unlinkat|EROFS:fchmod|EROFS:mkdir)
 				inject="$call:error=EROFS:when=$k" ;;
@@ -164,16 +175,42 @@ for cmd in rollback recalibrate factory-test; do
 				not_ok "$what: the next rollback fails: $(head -c 300 "$work/stderr2")"
 			elif [ -e "$rec.previous.swap" ]; then
 				not_ok "$what: journal left after the next rollback"
-			elif ! pair_ok "$cmd"; then
+			elif ! state=$(pair_state "$cmd"); then
 				not_ok "$what: record pair neither the old nor the new one"
+			elif [ "$action" != kill ] && [ "$cmd" != factory-test ] &&
+			     { [ $rc -eq 0 ] && [ $state = old ] || [ $rc -ne 0 ] && [ $state = new ]; }; then
+				status_lies=$((status_lies + 1))
+				not_ok "$what: exit $rc but the $state pair stands: $(head -c 300 "$work/stderr")"
 			else
-				ok "$what: pair intact (exit $rc)"
+				ok "$what: $state pair intact (exit $rc)"
 			fi
 		done
 	done < <(calls_of "${args[@]}")
 done
-[ $pair_runs -ge 100 ] || not_ok "only $pair_runs pair injections ran"
+[ $pair_runs -ge 250 ] || not_ok "only $pair_runs pair injections ran"
+
+# A directory where the previous record goes: recalibrate refuses before it
+# changes anything (it used to store the new record, say FAIL and leave a
+# journal that stopped every later command)
+reset_pair
+mv "$rec.previous" "$work/P.aside"
+mkdir "$rec.previous"
+run_sim recalibrate --samples 12 >"$work/out" 2>"$work/stderr"
+rc=$?
+if [ $rc -ne 0 ] && same "$rec" "$work/R" && [ ! -e "$rec.previous.swap" ] &&
+   grep -q "previous is a directory, not a record: nothing changed; remove it" "$work/out"; then
+	ok "recalibrate with a directory as the previous record: exit $rc, nothing changed, the reason given"
+else
+	not_ok "recalibrate with a directory as the previous record: exit $rc, journal $([ -e "$rec.previous.swap" ] && echo left || echo none): $(head -c 300 "$work/out")"
+fi
+rmdir "$rec.previous"
+mv "$work/P.aside" "$rec.previous"
+if run_sim rollback >/dev/null 2>&1 && same "$rec" "$work/P" && same "$rec.previous" "$work/R"; then
+	ok "and once it is removed, rollback works"
+else
+	not_ok "and once it is removed, rollback works"
+fi
 
 echo "1..$n"
-echo "# $hits save injection points, $pair_runs record-pair injections, $fail failures"
+echo "# $hits save injection points, $pair_runs record-pair injections, $status_lies exit statuses not matching the disk, $fail failures"
 [ $fail -eq 0 ]

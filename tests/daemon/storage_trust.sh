@@ -6,12 +6,14 @@
 # measured, restored or written, as is a symlinked state directory, a lock
 # that is not a regular file and a record path that names a device; each
 # refusal names the path and the fix. A group-writable state directory is
-# accepted when --state-group names its group. Output is TAP.
+# accepted when --state-group names its group. A second user (nobody,
+# through setpriv) cannot hold the record's lock, and a journal that is not
+# believed is never acted on (points 1 and 6 of issue 25). Output is TAP.
 set -u
 
 calibd=${1:?usage: storage_trust.sh PATH-TO-as9888-calibd}
-if [ "$(id -u)" -ne 0 ] || ! id nobody >/dev/null 2>&1; then
-	echo "1..0 # SKIP needs root and the user nobody"
+if [ "$(id -u)" -ne 0 ] || ! id nobody >/dev/null 2>&1 || ! command -v setpriv >/dev/null; then
+	echo "1..0 # SKIP needs root, the user nobody and setpriv"
 	exit 77
 fi
 work=$(mktemp -d /tmp/as9888-trust-XXXXXX)
@@ -134,5 +136,77 @@ fresh
 # shellcheck disable=SC2086
 run recalibrate $sim --samples 12 --record "$rec"
 check "a sound state directory: recalibrate works" test "$rc" -eq 0
+
+# Issue 25, point 1: flock(2) works on a descriptor opened read-only, so a
+# lock another user may read is one that user may hold for ever. The lock
+# is root's alone (0600); one left readable (0644, by an older version) is
+# made private by the next command. "nobody" then tries to hold it.
+as_nobody() { setpriv --reuid="$(id -u nobody)" --regid="$(id -g nobody)" --clear-groups "$@"; }
+# hold_lock: nobody tries flock on the lock; "held" in $work/holder if it got it
+hold_lock() {
+	rm -f "$work/holder"
+	as_nobody flock -x -n "$rec.lock" sh -c 'echo held; exec sleep 120' >"$work/holder" 2>&1 &
+	holder=$!
+	for _ in $(seq 300); do
+		grep -q held "$work/holder" 2>/dev/null && return
+		kill -0 "$holder" 2>/dev/null || return
+		sleep 0.1
+	done
+}
+let_go() { kill "$holder" 2>/dev/null; wait "$holder" 2>/dev/null; }
+check "the record's lock is private to root (mode 0600)" \
+	test "$(stat -c %a "$rec.lock")" = 600
+hold_lock
+# shellcheck disable=SC2086
+run rollback $sim --record "$rec" --lock-timeout 5
+check "another user cannot take the lock: rollback runs at once" \
+	eval '[ $rc -eq 0 ] && ! grep -q held "$work/holder"'
+let_go
+chmod 644 "$rec.lock"
+# shellcheck disable=SC2086
+run recalibrate $sim --samples 12 --record "$rec" --lock-timeout 5
+check "a lock left readable by others (0644): made private by the next command" \
+	eval '[ $rc -eq 0 ] && [ "$(stat -c %a "$rec.lock")" = 600 ]'
+hold_lock
+# shellcheck disable=SC2086
+run factory-test $sim --samples 12 --record "$rec" --lock-timeout 5
+check "and then another user cannot hold it: factory-test runs" \
+	eval '[ $rc -eq 0 ] && ! grep -q held "$work/holder"'
+let_go
+
+# Issue 25, point 6: a journal (<record>.previous.swap) is acted on only when
+# it is believed (root's, not writable by others) and a valid record; the
+# good previous record is never replaced by one that is not
+fresh
+# shellcheck disable=SC2086
+"$calibd" recalibrate $sim --samples 12 --record "$rec" >/dev/null 2>&1
+cp "$rec.previous" "$work/prev.good"
+journal=$rec.previous.swap
+# journal_refused CMD TEXT: CMD refused naming TEXT; the pair and the journal as they were
+journal_refused() {
+	local cmd=$1 text=$2
+	cp "$rec" "$work/cur.before"
+	# shellcheck disable=SC2086
+	run $cmd $sim --record "$rec" --lock-timeout 5
+	[ "$rc" -eq 1 ] && says "$text" err && says "nothing changed: move $journal aside by hand" err &&
+		cmp -s "$rec.previous" "$work/prev.good" && cmp -s "$rec" "$work/cur.before" && [ -e "$journal" ]
+}
+sed 's/^samples = .*/samples = 99/' "$work/good" >"$journal"	# its checksum no longer matches
+chown nobody "$journal"
+check "another user's journal with a broken checksum: rollback refuses it, the previous record kept" \
+	journal_refused rollback "$journal belongs to uid $(id -u nobody), not to root: not trusted"
+cp "$work/good" "$journal"
+chown nobody "$journal"
+check "another user's journal with a valid checksum: refused all the same (recalibrate)" \
+	journal_refused recalibrate "$journal belongs to uid $(id -u nobody), not to root: not trusted"
+sed 's/^samples = .*/samples = 99/' "$work/good" >"$journal"
+chown root "$journal"
+check "root's journal that is not a valid record: refused (rollback)" \
+	journal_refused rollback "$journal is not a valid record"
+rm -f "$journal"
+# shellcheck disable=SC2086
+run rollback $sim --record "$rec"
+check "with the journal removed, rollback works" \
+	eval '[ $rc -eq 0 ] && cmp -s "$rec" "$work/prev.good"'
 
 tap_end
