@@ -135,6 +135,22 @@ esac
 grep -qx "$want" "$unitdir/as9888-calibd.service" || fail "daemon: no $want"
 "$calibd" --help | grep -qx "  --record PATH        calibration record (default $statedir/calibration)" ||
 	fail "the program's default record is not $statedir/calibration"
+# the init script, when built (-Dsysvinit=true): the same paths, and
+# valid POSIX shell
+sysconfdir=$(opt sysconfdir)
+case $sysconfdir in /*) ;; *) sysconfdir=$prefix/$sysconfdir ;; esac
+initscript=$root$sysconfdir/init.d/as9888-calibd
+if [ "$(opt sysvinit)" = True ] || [ "$(opt sysvinit)" = true ]; then
+	if [ ! -x "$initscript" ]; then
+		fail "-Dsysvinit=true installed no $sysconfdir/init.d/as9888-calibd"
+	elif grep -qx "RECORD=$statedir/calibration" "$initscript" &&
+		grep -qx "PROG=$sbindir/as9888-calibd" "$initscript" &&
+		! grep -n '@[a-z]*@' "$initscript" && sh -n "$initscript"; then
+		echo "check-units: init script: paths ($statedir), shell syntax: ok"
+	else
+		fail "init script: paths or syntax"
+	fi
+fi
 
 # exposure: "→ Overall exposure level for X: 1.2 OK"
 exposure() {
@@ -172,7 +188,7 @@ if [ -z "${AS9888_CHECK_UNITS_NESTED:-}" ]; then
 	pb=$root/persist-build
 	if meson setup "$pb" "$srcdir" --prefix=/usr --sysconfdir=/etc --buildtype=release \
 			-Dsimulator=false -Dlibgpiod=disabled -Dtests=disabled \
-			-Dstatedir=/persist/as9888 >"$root/persist.log" 2>&1 &&
+			-Dstatedir=/persist/as9888 -Dsysvinit=true >"$root/persist.log" 2>&1 &&
 		ninja -C "$pb" daemon/as9888-calibd >>"$root/persist.log" 2>&1; then
 		echo "check-units: a build with -Dstatedir=/persist/as9888:"
 		AS9888_CHECK_UNITS_NESTED=1 "$0" "$pb/daemon/as9888-calibd" | sed 's/^/  /'

@@ -22,7 +22,7 @@ SRC_URI = "${AS9888_GIT_URI}"
 SRCREV = "c5ead2ee31db033c92c0ac05b8362c419d56eb37"
 S = "${WORKDIR}/git"
 
-inherit meson pkgconfig systemd
+inherit meson pkgconfig systemd update-rc.d
 
 # the product flags (tests/install/install.sh builds with the same;
 # -Dlibgpiod=disabled comes from PACKAGECONFIG below)
@@ -39,6 +39,18 @@ EXTRA_OEMESON += "-Dsystemdsystemunitdir=${systemd_system_unitdir} \
 # boot is uncalibrated (the restore then warns in the journal).
 AS9888_STATEDIR ??= "${localstatedir}/lib/as9888"
 EXTRA_OEMESON += "-Dstatedir=${AS9888_STATEDIR}"
+# sysvinit distros: the init script (update-rc.d), and eudev's rule for
+# the restore on hotplug (not with systemd: restore@ does it there)
+EXTRA_OEMESON += "-Dsysvinit=${@bb.utils.contains('DISTRO_FEATURES', 'sysvinit', 'true', 'false', d)}"
+INITSCRIPT_NAME = "as9888-calibd"
+INITSCRIPT_PARAMS = "start 45 2 3 4 5 . stop 55 0 1 6 ."
+do_install:append() {
+	if ${@bb.utils.contains('DISTRO_FEATURES', 'sysvinit', 'true', 'false', d)} && \
+	   ! ${@bb.utils.contains('DISTRO_FEATURES', 'systemd', 'true', 'false', d)}; then
+		install -D -m 0644 ${S}/contrib/sysvinit/61-as9888-calibd-hotplug.rules \
+			${D}${nonarch_base_libdir}/udev/rules.d/61-as9888-calibd-hotplug.rules
+	fi
+}
 
 PACKAGECONFIG ??= ""
 PACKAGECONFIG[gpiod] = "-Dlibgpiod=enabled,-Dlibgpiod=disabled,libgpiod"
@@ -48,7 +60,7 @@ PACKAGECONFIG[gpiod] = "-Dlibgpiod=enabled,-Dlibgpiod=disabled,libgpiod"
 SYSTEMD_SERVICE:${PN} = "as9888-calibd.socket"
 SYSTEMD_AUTO_ENABLE = "enable"
 
-FILES:${PN} += "${nonarch_base_libdir}/udev/rules.d \
+FILES:${PN} += "${nonarch_base_libdir}/udev/rules.d ${sysconfdir}/init.d \
                 ${nonarch_libdir}/tmpfiles.d \
                 ${systemd_system_unitdir}"
 
