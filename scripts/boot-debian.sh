@@ -33,7 +33,7 @@
 # is cached in $AS9888_CACHE/boot (~/.cache/as9888/boot, under cache_lock "boot"), so
 # any checkout on this machine reuses it; this checkout's builds, disk image
 # and logs are in $AS9888_BUILD/boot (default build/boot). A second run
-# rebuilds only what changed and boots twice. Needs root (debootstrap,
+# rebuilds only what changed and boots three times. Needs root (debootstrap,
 # chroot, loop mount); installs the Debian packages it lacks. Each boot is
 # bounded (AS9888_BOOT_TIMEOUT, 900 s): a guest that stalls is stopped and
 # reported with its log and the last check it printed. Prints
@@ -51,8 +51,8 @@ t0=$(date +%s)
 mkdir -p "$cache" "$work"
 cache_lock boot
 
-ensure_pkgs debootstrap qemu-system-x86 e2fsprogs dkms linux-headers-amd64 \
-	build-essential meson ninja-build kmod rsync
+ensure_pkgs debootstrap qemu-system-x86 e2fsprogs linux-headers-amd64 \
+	build-essential kmod rsync
 KVER=$(dpkg-query -W -f='${Depends}' linux-headers-amd64 |
 	grep -o 'linux-headers-[0-9][^ ,]*-amd64' | head -n1 | sed 's/^linux-headers-//')
 [ -e "/lib/modules/$KVER/build" ] || die "no headers for $KVER: apt-get install linux-headers-$KVER"
