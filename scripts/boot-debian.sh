@@ -35,7 +35,7 @@
 # and logs are in $AS9888_BUILD/boot (default build/boot). A second run
 # rebuilds only what changed and boots three times. Needs root (debootstrap,
 # chroot, loop mount); installs the Debian packages it lacks. Each boot is
-# bounded (AS9888_BOOT_TIMEOUT, 900 s): a guest that stalls is stopped and
+# bounded (AS9888_BOOT_TIMEOUT, 1500 s): a guest that stalls is stopped and
 # reported with its log and the last check it printed. Prints
 # "boot-debian: N passed, M failed" and the times.
 set -euo pipefail
@@ -45,7 +45,7 @@ set -euo pipefail
 top=$AS9888_REPO
 cache=$AS9888_CACHE/boot
 work=${AS9888_BUILD:-$top/build}/boot
-boot_timeout=${AS9888_BOOT_TIMEOUT:-900}
+boot_timeout=${AS9888_BOOT_TIMEOUT:-1500}
 t0=$(date +%s)
 [ "$(id -u)" -eq 0 ] || die "needs root (debootstrap, chroot, loop mount): run it as root or with sudo"
 mkdir -p "$cache" "$work"
