@@ -4,32 +4,38 @@
 # Boot test on a stock Debian 12: a debootstrap image (minbase, systemd as
 # PID 1, udev) with Debian's own kernel (linux-image-$KVER, the version
 # linux-headers-amd64 names), booted in QEMU (TCG). Into it go, as a
-# package and an integrator would put them:
-#  - the driver, built by dkms from dkms.conf against that kernel's headers
-#    (own dkms trees, nothing written to the host's /lib/modules);
+# user and an integrator would put them:
+#  - the Debian packages of the last commit (scripts/deb-build.sh:
+#    as9888-calibd and as9888-dkms), installed with `apt install ./*.deb`
+#    in the image: dh-dkms builds the driver against the image's kernel
+#    headers, the package enables the socket (plus a SocketGroup= drop-in);
 #  - the test adapter (tests/vm/adapter) built against the same kernel,
 #    with the kernel's interrupt simulator compiled in (tests/boot/
 #    irq_sim_compat.c: Debian's kernel has no CONFIG_IRQ_SIM), loaded at
 #    boot by modules-load.d;
-#  - the product build of as9888-calibd (-Dsimulator=false -Dlibgpiod=
-#    disabled -Dtests=disabled, prefix /usr) installed by meson install:
-#    units, udev rule, tmpfiles entry as installed; the socket enabled with
-#    a SocketGroup= drop-in.
-# Boot 1 (a board fresh from assembly): no record, no failed unit, the
-# restore unit skipped; the factory test through the driver writes the
-# record. Boot 2: tests/boot/guest-test.sh checks the calibration was
-# applied by as9888-calibd-restore@ before multi-user.target, again after a
-# rebind and after the device is instantiated late, and the socket for a
-# user in SocketGroup. Driver and adapter come from the last commit (git
-# archive HEAD), not from files being edited.
+#  - for the BusyBox boot: busybox-static, tests/boot/busybox/ (inittab,
+#    rcS, mdev.conf) and tests/boot/guest-busybox.sh.
+# Boot 1, factory (a board fresh from assembly): no record, no failed unit,
+# the restore unit skipped with one warning in the journal; the factory
+# test through the driver writes the record. Boot 2, busybox: BusyBox init
+# as PID 1 (no systemd, no udev; mdev): the package's init script applied
+# the record before the first consumer, mdev's hotplug line and the daemon
+# after a rebind (tests/boot/guest-busybox.sh). Boot 3, boot: tests/boot/
+# guest-test.sh checks the calibration was applied by
+# as9888-calibd-restore@ before multi-user.target, again after a rebind and
+# after the device is instantiated late, the socket for a user in
+# SocketGroup, then an upgrade of the package (the record kept) and a purge
+# (no file left behind). Packages and adapter come from the last commit
+# (git archive HEAD), not from files being edited.
 #
-# The root file system (debootstrap + Debian's kernel) is cached in
-# $AS9888_CACHE/boot (~/.cache/as9888/boot, under cache_lock "boot"), so
+# The root file system (debootstrap + Debian's kernel, and a copy with what
+# the packages need: dkms, the kernel's headers, libgpiod2, busybox-static)
+# is cached in $AS9888_CACHE/boot (~/.cache/as9888/boot, under cache_lock "boot"), so
 # any checkout on this machine reuses it; this checkout's builds, disk image
 # and logs are in $AS9888_BUILD/boot (default build/boot). A second run
-# rebuilds only what changed and boots twice. Needs root (debootstrap,
+# rebuilds only what changed and boots three times. Needs root (debootstrap,
 # chroot, loop mount); installs the Debian packages it lacks. Each boot is
-# bounded (AS9888_BOOT_TIMEOUT, 600 s): a guest that stalls is stopped and
+# bounded (AS9888_BOOT_TIMEOUT, 1500 s): a guest that stalls is stopped and
 # reported with its log and the last check it printed. Prints
 # "boot-debian: N passed, M failed" and the times.
 set -euo pipefail
@@ -39,14 +45,14 @@ set -euo pipefail
 top=$AS9888_REPO
 cache=$AS9888_CACHE/boot
 work=${AS9888_BUILD:-$top/build}/boot
-boot_timeout=${AS9888_BOOT_TIMEOUT:-600}
+boot_timeout=${AS9888_BOOT_TIMEOUT:-1500}
 t0=$(date +%s)
 [ "$(id -u)" -eq 0 ] || die "needs root (debootstrap, chroot, loop mount): run it as root or with sudo"
 mkdir -p "$cache" "$work"
 cache_lock boot
 
-ensure_pkgs debootstrap qemu-system-x86 e2fsprogs dkms linux-headers-amd64 \
-	build-essential meson ninja-build kmod rsync
+ensure_pkgs debootstrap qemu-system-x86 e2fsprogs linux-headers-amd64 \
+	build-essential kmod rsync
 KVER=$(dpkg-query -W -f='${Depends}' linux-headers-amd64 |
 	grep -o 'linux-headers-[0-9][^ ,]*-amd64' | head -n1 | sed 's/^linux-headers-//')
 [ -e "/lib/modules/$KVER/build" ] || die "no headers for $KVER: apt-get install linux-headers-$KVER"
@@ -79,6 +85,33 @@ if [ ! -e "$rootfs/.as9888-complete" ]; then
 fi
 log "root file system ready ($(du -sh "$rootfs" | cut -f1), $(( $(date +%s) - t0 )) s)"
 
+# 1b. a copy with what `apt install ./as9888-*.deb` pulls in (installed
+# from the network once, so each run installs the packages offline)
+deps="dkms linux-headers-$KVER libgpiod2 busybox-static"
+droot=$cache/rootfs-$KVER-debs
+if [ "$(cat "$droot/.as9888-complete" 2>/dev/null)" != "$deps" ]; then
+	log "the packages' dependencies into a copy of the root file system: $deps"
+	rm -rf "$droot"
+	cp -a "$rootfs" "$droot"
+	rm -f "$droot/.as9888-complete"
+	cp -L /etc/resolv.conf "$droot/etc/resolv.conf"
+	cat >"$droot/etc/apt/sources.list" <<-EOF
+	deb http://deb.debian.org/debian bookworm main
+	deb http://deb.debian.org/debian bookworm-updates main
+	deb http://deb.debian.org/debian-security bookworm-security main
+	EOF
+	mount --bind /proc "$droot/proc"
+	mount --bind /dev "$droot/dev"
+	{ chroot "$droot" apt-get -q update &&
+		DEBIAN_FRONTEND=noninteractive chroot "$droot" apt-get -q install -y $deps; } \
+		>"$cache/deps-install.log" 2>&1 || rc=$?
+	umount "$droot/dev" "$droot/proc"
+	[ "${rc:-0}" -eq 0 ] || die "cannot install $deps in the image (log $cache/deps-install.log; network?)"
+	chroot "$droot" apt-get clean
+	echo "$deps" >"$droot/.as9888-complete"
+fi
+log "with the packages' dependencies: $(du -sh "$droot" | cut -f1), $(( $(date +%s) - t0 )) s"
+
 # 2. the sources of the last commit; only files whose content changed get
 # a new time (archive times are commit times: an older commit would look
 # older than the objects built from a newer one)
@@ -89,17 +122,14 @@ git -C "$top" archive HEAD | tar -x -C "$src.new"
 rsync -rc --delete "$src.new/" "$src/"
 rm -rf "$src.new"
 
-# the driver through dkms.conf, in our own dkms trees
-dk=$work/dkms
-rm -rf "$dk"
-mkdir -p "$dk/tree" "$dk/source/as9888-0.1.0"
-cp -a "$src/dkms.conf" "$src/Kbuild" "$src/drivers" "$dk/source/as9888-0.1.0/"
-DKMS=(dkms --dkmstree "$dk/tree" --sourcetree "$dk/source")
-"${DKMS[@]}" add -m as9888 -v 0.1.0 >"$dk/dkms.log" 2>&1 &&
-	env mok_signing_key="$dk/mok.key" mok_certificate="$dk/mok.pub" \
-	"${DKMS[@]}" build -m as9888 -v 0.1.0 -k "$KVER" >>"$dk/dkms.log" 2>&1 ||
-	die "dkms build failed (log $dk/dkms.log)"
-kos=$dk/tree/as9888/0.1.0/$KVER/$(uname -m)/module
+# the Debian packages (scripts/deb-build.sh: built once per commit)
+"$top/scripts/deb-build.sh" >"$work/deb-build.log" 2>&1 || {
+	tail -20 "$work/deb-build.log"
+	die "the Debian packages failed to build or check (log $work/deb-build.log)"
+}
+debdir=${AS9888_BUILD:-$top/build}/deb
+ver=$(sed -n '1s/^as9888 (\([^)]*\)).*/\1/p' "$src/debian/changelog")
+debs=("$debdir/as9888-calibd_${ver}_$(dpkg --print-architecture).deb" "$debdir/as9888-dkms_${ver}_all.deb")
 
 # the adapter against the same kernel, with the interrupt simulator
 ad=$src/tests/vm/adapter
@@ -108,28 +138,19 @@ sed -i 's/^as9888_sim-y := .*/& irq_sim_compat.o/' "$ad/Kbuild"
 make -C "/lib/modules/$KVER/build" M="$ad" modules >"$work/adapter.log" 2>&1 ||
 	die "adapter build failed (log $work/adapter.log)"
 
-# the daemon: the product build, installed as a package installs it
-b=$work/calibd
-[ -f "$b/build.ninja" ] ||
-	meson setup "$b" "$src" --prefix=/usr --sysconfdir=/etc --buildtype=release \
-		-Dsimulator=false -Dlibgpiod=disabled -Dtests=disabled >"$work/meson.log" 2>&1 ||
-	die "meson setup failed (log $work/meson.log)"
-meson setup --reconfigure "$b" "$src" >/dev/null 2>&1 || true
-ninja -C "$b" >"$work/ninja.log" 2>&1 || die "build failed (log $work/ninja.log)"
-log "driver (dkms), adapter and daemon built ($(( $(date +%s) - t0 )) s)"
+log "packages and adapter built ($(( $(date +%s) - t0 )) s)"
 
 # 3. the disk image: the cached root file system plus this run's files
 img=$work/disk.img
 mnt=$work/mnt
 rm -f "$img"
-truncate -s 2G "$img"
-mkfs.ext4 -q -d "$rootfs" "$img"
+truncate -s 3G "$img"
+mkfs.ext4 -q -d "$droot" "$img"
 mkdir -p "$mnt"
 mount -o loop "$img" "$mnt"
-trap 'umount "$mnt" 2>/dev/null || true' EXIT
-DESTDIR=$mnt meson install -C "$b" --no-rebuild --quiet >/dev/null
-mkdir -p "$mnt/lib/modules/$KVER/updates/dkms" "$mnt/lib/modules/$KVER/extra"
-cp "$kos"/*.ko* "$mnt/lib/modules/$KVER/updates/dkms/"
+trap 'umount "$mnt/proc" "$mnt/dev" "$mnt" 2>/dev/null || true' EXIT
+rm -f "$mnt/.as9888-complete"
+mkdir -p "$mnt/lib/modules/$KVER/extra"
 cp "$ad/as9888_sim.ko" "$mnt/lib/modules/$KVER/extra/"
 depmod -b "$mnt" "$KVER"
 echo as9888_sim >"$mnt/etc/modules-load.d/as9888-sim.conf"
@@ -137,10 +158,44 @@ chroot "$mnt" groupadd -f as9888
 chroot "$mnt" usermod -a -G as9888 tester
 mkdir -p "$mnt/etc/systemd/system/as9888-calibd.socket.d"
 printf '[Socket]\nSocketGroup=as9888\n' >"$mnt/etc/systemd/system/as9888-calibd.socket.d/group.conf"
+install -D -m 0644 "$top/tests/boot/lib.sh" "$mnt/usr/local/lib/as9888-boottest/lib.sh"
 install -m 0755 "$top/tests/boot/guest-test.sh" "$mnt/usr/local/bin/as9888-boottest"
 install -m 0644 "$top/tests/boot/as9888-boottest.service" "$mnt/etc/systemd/system/"
-chroot "$mnt" systemctl enable as9888-calibd.socket as9888-boottest.service >/dev/null 2>&1
+# the BusyBox boot: init=/usr/local/lib/as9888-bb/init (BusyBox's init)
+install -m 0755 "$top/tests/boot/guest-busybox.sh" "$mnt/usr/local/bin/as9888-boottest-busybox"
+install -D -m 0755 "$top/tests/boot/busybox/rcS" "$mnt/usr/local/lib/as9888-bb/rcS"
+ln -sf /bin/busybox "$mnt/usr/local/lib/as9888-bb/init"
+install -m 0644 "$top/tests/boot/busybox/inittab" "$mnt/etc/inittab"
+install -m 0644 "$top/tests/boot/busybox/mdev.conf" "$mnt/etc/mdev.conf"
+chroot "$mnt" systemctl enable as9888-boottest.service >/dev/null 2>&1
 chroot "$mnt" systemctl mask serial-getty@ttyS0.service getty@tty1.service >/dev/null 2>&1
+
+# the packages, as a user installs them; the image's file list before, for
+# the purge check of the last boot
+chroot "$mnt" bash -c '. /usr/local/lib/as9888-boottest/lib.sh && snapshot' >"$work/files-before"
+mkdir -p "$mnt/root/debs" "$mnt/root/debs-upgrade"
+cp "${debs[@]}" "$mnt/root/debs/"
+cp "$work/files-before" "$mnt/root/files-before"
+# (no service starts in the chroot: policy-rc.d, as in any chroot)
+printf '#!/bin/sh\nexit 101\n' >"$mnt/usr/sbin/policy-rc.d"
+chmod 0755 "$mnt/usr/sbin/policy-rc.d"
+mount --bind /proc "$mnt/proc"
+mount --bind /dev "$mnt/dev"
+rc=0
+DEBIAN_FRONTEND=noninteractive chroot "$mnt" sh -c \
+	"cd /root/debs && apt install -y $(printf './%s ' "${debs[@]##*/}")" >"$work/apt-install.log" 2>&1 || rc=$?
+umount "$mnt/dev" "$mnt/proc"
+rm -f "$mnt/usr/sbin/policy-rc.d"
+[ "$rc" -eq 0 ] || { tail -20 "$work/apt-install.log"; die "apt install of the packages failed (log $work/apt-install.log)"; }
+ls "$mnt/lib/modules/$KVER/updates/dkms/"as9888_i2c.ko* >/dev/null 2>&1 ||
+	die "dkms did not install as9888_i2c for $KVER (log $work/apt-install.log)"
+log "installed: $(chroot "$mnt" dpkg-query -W -f='${Package} ${Version}, ' as9888-calibd as9888-dkms)driver built by dkms for $KVER"
+# the upgrade of the last boot: the same package with a higher version
+x=$work/upgrade
+rm -rf "$x"
+dpkg-deb -R "${debs[0]}" "$x"
+sed -i "s/^Version: .*/Version: ${ver}+boottest1/" "$x/DEBIAN/control"
+dpkg-deb --root-owner-group -b "$x" "$mnt/root/debs-upgrade/as9888-calibd_${ver}+boottest1_$(dpkg --print-architecture).deb" >/dev/null
 cp "$mnt/boot/vmlinuz-$KVER" "$mnt/boot/initrd.img-$KVER" "$work/"
 umount "$mnt"
 trap - EXIT
@@ -153,10 +208,11 @@ trap - EXIT
 boot() {
 	local t rc=0 last
 	t=$(date +%s)
+	# (a second argument: more kernel parameters)
 	timeout -k 10 "$boot_timeout" qemu-system-x86_64 -accel tcg -m 1024 -nographic -no-reboot \
 		-kernel "$work/vmlinuz-$KVER" -initrd "$work/initrd.img-$KVER" \
 		-drive file="$img",format=raw,if=virtio \
-		-append "root=/dev/vda rw console=ttyS0 quiet loglevel=4 panic=10 as9888.phase=$1 systemd.show_status=0" \
+		-append "root=/dev/vda rw console=ttyS0 quiet loglevel=4 panic=10 as9888.phase=$1 systemd.show_status=0${2:+ $2}" \
 		-nic none </dev/null >"$work/$1.log" 2>&1 || rc=$?
 	log "boot $1: $(( $(date +%s) - t )) s"
 	grep -a '^BOOTTEST' "$work/$1.log" | tr -d '\r' || true
@@ -168,7 +224,7 @@ boot() {
 		echo "BOOTTEST not ok - $1: the guest stopped before the end (QEMU exit $rc); last line: ${last:-none} (log $work/$1.log)"
 	fi
 }
-{ boot factory; boot boot; } | tee "$work/results"
+{ boot factory; boot busybox init=/usr/local/lib/as9888-bb/init; boot boot; } | tee "$work/results"
 passed=$(grep -c '^BOOTTEST ok' "$work/results" || true)
 failed=$(grep -c '^BOOTTEST not ok' "$work/results" || true)
 echo "boot-debian: $passed passed, $failed failed, $(( $(date +%s) - t0 )) s in all"

@@ -9,6 +9,10 @@
 #    error), failing on any message, since verify warns with status 0;
 #  - no path left unsubstituted (@...@) and ExecStart naming the installed
 #    binary;
+#  - the daemon without [Install] (the socket starts it), the restore's
+#    ExecCondition= warning for a board without a record, the state
+#    directory (-Dstatedir=) in every unit, the tmpfiles entry and the
+#    program's default record;
 #  - systemd-analyze security --offline=true: the exposure printed and
 #    compared with the bounds below;
 #  - the udev rule parsed by udevadm verify when this udevadm has it, and
@@ -21,6 +25,10 @@
 # The bounds keep a small margin for other systemd versions' weights but
 # fail on the loss of any major setting (a dropped SystemCallFilter= alone
 # costs more than 0.3).
+#
+# Then the same on a build of this source tree with -Dstatedir=/persist/as9888
+# (a persist partition): the record's path in every unit, ReadWritePaths=
+# instead of StateDirectory=, the tmpfiles entry, the program's default.
 #
 # Usage: check-units.sh PATH-TO-as9888-calibd   (inside its meson build dir)
 set -euo pipefail
@@ -53,10 +61,13 @@ tmpfilesdir=$(opt tmpfilesdir)
 [ -n "$tmpfilesdir" ] || tmpfilesdir=$prefix/lib/tmpfiles.d
 meson install -C "$bdir" --destdir "$root" --no-rebuild --quiet >/dev/null
 unitdir=$root$unitdir
-# the targets and slices the default dependencies name
+# the targets and slices the default dependencies name, and the shell the
+# restore's ExecCondition= runs
 for unit in /usr/lib/systemd/system/*.target /usr/lib/systemd/system/*.slice; do
 	cp -P "$unit" "$unitdir/"
 done
+mkdir -p "$root/bin"
+cp -L /bin/sh "$root/bin/sh"
 
 status=0
 fail() { echo "check-units: $*: FAIL"; status=1; }
@@ -93,6 +104,54 @@ grep -q 'as9888-calibd restore --backend iio .*\$AS9888_CALIBD_RESTORE_OPTS$' \
 grep -q 'as9888-calibd daemon --backend iio .*\$AS9888_CALIBD_DAEMON_OPTS$' \
 	"$unitdir/as9888-calibd.service" || fail "daemon: options variable"
 
+# socket activation decides: the daemon has no [Install] (a preset or
+# `systemctl enable` of it would start it at every boot), the socket has
+if grep -q '^\[Install\]' "$unitdir/as9888-calibd.service"; then
+	fail "as9888-calibd.service has an [Install] section: only the socket may be enabled"
+fi
+grep -q '^WantedBy=sockets.target$' "$unitdir/as9888-calibd.socket" ||
+	fail "as9888-calibd.socket: not WantedBy=sockets.target"
+# a board without a record: a warning (priority 4) naming the record and
+# what to run, and a skip (exit 1), not a silent ConditionPathExists=
+statedir=$(opt statedir)
+cond=$(sed -n 's/^ExecCondition=//p' "$unitdir/as9888-calibd-restore@.service")
+case $cond in
+"/bin/sh -c 'test -e $statedir/calibration && exit 0; echo \"<4>as9888-calibd: no calibration record at $statedir/calibration: "*"Run as9888-calibd factory-test --backend iio on this board"*"; exit 1'") ;;
+*) fail "restore: no ExecCondition= warning for a missing $statedir/calibration" ;;
+esac
+if grep -q '^ConditionPathExists=' "$unitdir/as9888-calibd-restore@.service"; then
+	fail "restore: ConditionPathExists= would skip silently"
+fi
+# the state directory (-Dstatedir=) everywhere the record is named
+for f in "$unitdir"/as9888-calibd*.service "$root$tmpfilesdir/as9888-calibd.conf"; do
+	grep -q "$statedir\b" "$f" || fail "$(basename "$f") does not name $statedir"
+done
+grep -q "^RequiresMountsFor=$statedir$" "$unitdir/as9888-calibd.service" ||
+	fail "daemon: no RequiresMountsFor=$statedir"
+case $statedir in
+/var/lib/*) want="StateDirectory=${statedir#/var/lib/}" ;;
+*) want="ReadWritePaths=-$statedir" ;;
+esac
+grep -qx "$want" "$unitdir/as9888-calibd.service" || fail "daemon: no $want"
+"$calibd" --help | grep -qx "  --record PATH        calibration record (default $statedir/calibration)" ||
+	fail "the program's default record is not $statedir/calibration"
+# the init script, when built (-Dsysvinit=true): the same paths, and
+# valid POSIX shell
+sysconfdir=$(opt sysconfdir)
+case $sysconfdir in /*) ;; *) sysconfdir=$prefix/$sysconfdir ;; esac
+initscript=$root$sysconfdir/init.d/as9888-calibd
+if [ "$(opt sysvinit)" = True ] || [ "$(opt sysvinit)" = true ]; then
+	if [ ! -x "$initscript" ]; then
+		fail "-Dsysvinit=true installed no $sysconfdir/init.d/as9888-calibd"
+	elif grep -qx "RECORD=$statedir/calibration" "$initscript" &&
+		grep -qx "PROG=$sbindir/as9888-calibd" "$initscript" &&
+		! grep -n '@[a-z]*@' "$initscript" && sh -n "$initscript"; then
+		echo "check-units: init script: paths ($statedir), shell syntax: ok"
+	else
+		fail "init script: paths or syntax"
+	fi
+fi
+
 # exposure: "→ Overall exposure level for X: 1.2 OK"
 exposure() {
 	systemd-analyze security --offline=true --root="$root" "$1" 2>/dev/null |
@@ -121,5 +180,23 @@ grep -q 'ENV{SYSTEMD_WANTS}+="as9888-calibd-restore@.service"' "$rule" &&
 # one restore per chip: the accelerometer device only, not the magnetometer's
 grep -q '^ATTR{name}!="as9888-accel", GOTO="as9888_calibd_end"$' "$rule" ||
 	fail "$(basename "$rule"): does not match the accelerometer device (as9888-accel) alone"
+
+# the same checks on a build for a persist partition (-Dstatedir=), as a
+# read-only or A/B root needs: every path follows the option
+if [ -z "${AS9888_CHECK_UNITS_NESTED:-}" ]; then
+	srcdir=$(cd "$(dirname "$0")/.." && pwd)
+	pb=$root/persist-build
+	if meson setup "$pb" "$srcdir" --prefix=/usr --sysconfdir=/etc --buildtype=release \
+			-Dsimulator=false -Dlibgpiod=disabled -Dtests=disabled \
+			-Dstatedir=/persist/as9888 -Dsysvinit=true >"$root/persist.log" 2>&1 &&
+		ninja -C "$pb" daemon/as9888-calibd >>"$root/persist.log" 2>&1; then
+		echo "check-units: a build with -Dstatedir=/persist/as9888:"
+		AS9888_CHECK_UNITS_NESTED=1 "$0" "$pb/daemon/as9888-calibd" | sed 's/^/  /'
+		[ "${PIPESTATUS[0]}" -eq 0 ] || fail "-Dstatedir=/persist/as9888"
+	else
+		tail -20 "$root/persist.log"
+		fail "a build with -Dstatedir=/persist/as9888"
+	fi
+fi
 [ $status -ne 0 ] || echo "check-units: all ok"
 exit $status

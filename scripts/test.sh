@@ -144,6 +144,7 @@ if [ "$what" = all ]; then
 	stage "devicetree binding (dt-schema)" "$top/scripts/dt-check.sh"
 	stage "KUnit on 6.1 and 7.2 (UML)" kunit_suite
 	stage "DKMS build against Debian 12's headers" "$top/scripts/dkms-check.sh"
+	stage "Debian packages (dpkg-buildpackage, lintian)" "$top/scripts/deb-build.sh"
 	stage "boot test: Debian 12 with Debian's kernel, DKMS and systemd in QEMU" boot_test
 	stage "VM bench: driver, adapter and daemon in QEMU on 6.1 and 7.2" vm_bench
 fi

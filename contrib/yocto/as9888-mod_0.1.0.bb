@@ -15,7 +15,8 @@ LIC_FILES_CHKSUM = "file://COPYING;md5=b234ee4d69f5fce4486a80fdaf4a4263"
 
 AS9888_GIT_URI ??= "git://git.example.com/as9888.git;protocol=https;branch=main"
 SRC_URI = "${AS9888_GIT_URI}"
-SRCREV ??= "${AUTOREV}"
+# pinned (reproducible): the commit this recipe was written for
+SRCREV = "c5ead2ee31db033c92c0ac05b8362c419d56eb37"
 S = "${WORKDIR}/git"
 
 inherit module

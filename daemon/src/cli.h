@@ -10,7 +10,10 @@
 #include "backend_raw.h"
 #include "ftest.h"
 
+/* the build sets it from -Dstatedir= (meson_options.txt) */
+#ifndef CLI_DEFAULT_RECORD
 #define CLI_DEFAULT_RECORD	"/var/lib/as9888/calibration"
+#endif
 #define CLI_DEFAULT_I2C_DEV	"/dev/i2c-0"
 #define CLI_DEFAULT_SOCKET	"/run/as9888-calibd.sock"
 #define CLI_DEFAULT_SOCKET_MODE	0660

@@ -17,28 +17,8 @@
 # Prints "BOOTTEST ok|not ok - what" lines and "BOOTTEST done".
 set -u
 phase=$(sed -n 's/.*as9888\.phase=\([a-z]*\).*/\1/p' /proc/cmdline)
-rec=/var/lib/as9888/calibration
-n=0
-ok() { echo "BOOTTEST ok - $*"; }
-bad() { echo "BOOTTEST not ok - $*"; }
-check() { local what=$1; shift; if "$@"; then ok "$what"; else bad "$what"; fi; }
-
-dev() {	# the sysfs directory of the IIO device named $1, default the accelerometer's
-	local d
-	for d in /sys/bus/iio/devices/iio:device*; do
-		[ "$(cat "$d/name" 2>/dev/null)" = "${1:-as9888-accel}" ] && { readlink -f "$d"; return 0; }
-	done
-	return 1
-}
-wait_dev() { for _ in $(seq 100); do dev >/dev/null && return 0; sleep 0.2; done; return 1; }
-t_level() { awk '$1 == "t_level" { printf "%d", $3 * 1000 + ($3 < 0 ? -0.5 : 0.5) }' "$rec"; }
-applied() {
-	local d
-	d=$(dev) || return 1
-	[ "$(cat "$d/in_accel_calibtemp")" = "$(t_level)" ] &&
-		[ "$(cat "$d/in_accel_z_caliboffset")" != 0.000000 ]
-}
-wait_applied() { for _ in $(seq 150); do applied && return 0; sleep 0.2; done; return 1; }
+# shellcheck source=tests/boot/lib.sh
+. /usr/local/lib/as9888-boottest/lib.sh
 mono() { systemctl show -P "$2" "$1"; }
 # gone_and_back WHAT WHAT-GONE REMOVE ADD: REMOVE takes the device away, and
 # restore@ (BindsTo= the device) must stop with it; ADD brings it back, and
@@ -77,9 +57,19 @@ check "no failed unit (${failed:-none})" test -z "$failed"
 
 case $phase in
 factory)
+	check "installed from the .debs: as9888-calibd and as9888-dkms" \
+		eval '[ "$(dpkg-query -W -f="\${Status} " as9888-calibd as9888-dkms)" = "install ok installed install ok installed " ]'
+	check "the socket enabled by the package, the daemon's service static (no [Install])" \
+		eval '[ "$(systemctl is-enabled as9888-calibd.socket)" = enabled ] &&
+		      [ "$(systemctl is-enabled as9888-calibd.service)" = static ]'
 	u=$(restore_unit)
-	check "no record: restore unit $u skipped by its condition, not failed" \
-		eval '[ -n "$u" ] && [ "$(mono "$u" ConditionResult)" = no ] && [ "$(mono "$u" Result)" = success ]'
+	check "no record: restore unit $u skipped by its ExecCondition=, not failed" \
+		eval '[ -n "$u" ] && [ "$(mono "$u" Result)" = exec-condition ] && [ "$(mono "$u" ActiveState)" = inactive ]'
+	warn=$(journalctl -b -q -p warning..warning -o cat | grep -c "no calibration record at $rec" || true)
+	check "no record: one warning in the journal (priority warning), saying what to run" \
+		eval '[ "$warn" -eq 1 ] &&
+		      journalctl -b -q -p warning..warning -o cat -u "$u" | grep -q "factory trims only.*Run as9888-calibd factory-test --backend iio on this board"'
+	journalctl -b -q -p warning..warning -o short-monotonic -u "$u" | sed 's/^/BOOTTEST # journal: /'
 	check "no record: request status (SocketGroup user) says to run the factory test" \
 		eval '! runuser -u tester -- as9888-calibd request status >/tmp/st0.log 2>&1 && grep -q "no record yet: run factory-test first" /tmp/st0.log'
 	sed 's/^/BOOTTEST # /' /tmp/st0.log | head -3
@@ -104,13 +94,9 @@ boot)
 
 	# rebind: the driver comes back with its defaults; restore@ (BindsTo)
 	# and the daemon apply the record again
-	d=$(dev); i2c=$(basename "$(readlink -f "$d/..")")
 	sleep 1
 	c0=$(journalctl -q -o cat -u as9888-calibd.service | grep -c "calibration applied to")
-	echo "$i2c" >/sys/bus/i2c/drivers/as9888_i2c/unbind
-	sleep 1
-	echo "$i2c" >/sys/bus/i2c/drivers/as9888_i2c/bind
-	wait_dev
+	rebind
 	check "rebind: applied again" wait_applied
 	# the daemon too: kernel uevents reach its private network namespace
 	# (PrivateNetwork=yes) through the socket filter
@@ -139,6 +125,34 @@ boot)
 		eval '! runuser -u nobody -- as9888-calibd request status >/tmp/st1.log 2>&1 &&
 		      grep -q "Permission denied: run as root, or ask to be added to group as9888" /tmp/st1.log'
 	sed 's/^/BOOTTEST # /' /tmp/st1.log | head -2
+
+	# an upgrade (the same package with a higher version) keeps the record
+	up=$(ls /root/debs-upgrade/as9888-calibd_*.deb)
+	upver=$(dpkg-deb -f "$up" Version)
+	sum0=$(sha256sum "$rec")
+	t=$(date +%s)
+	check "upgrade: apt install ./$(basename "$up")" \
+		eval 'apt install -y "$up" >/tmp/up.log 2>&1 &&
+		      [ "$(dpkg-query -W -f="\${Version}" as9888-calibd)" = "$upver" ]'
+	tail -3 /tmp/up.log | sed 's/^/BOOTTEST # /'
+	echo "BOOTTEST # the upgrade took $(( $(date +%s) - t )) s"
+	check "upgrade: the record unchanged" eval '[ "$(sha256sum "$rec")" = "$sum0" ]'
+	check "upgrade: the socket still enabled, the daemon answers" \
+		eval 'systemctl is-enabled -q as9888-calibd.socket && as9888-calibd request status >/tmp/st2.log 2>&1'
+	check "upgrade: a rebind is applied again" eval 'rebind && wait_applied'
+
+	# purge: nothing of the packages left (the list of the image before they
+	# were installed, less what booting creates: lib.sh, snapshot())
+	t=$(date +%s)
+	check "purge: apt purge as9888-calibd as9888-dkms" \
+		eval 'apt purge -y as9888-calibd as9888-dkms >/tmp/purge.log 2>&1 &&
+		      ! dpkg-query -W -f="\${Status}" as9888-calibd as9888-dkms 2>/dev/null | grep -q installed'
+	echo "BOOTTEST # the purge took $(( $(date +%s) - t )) s"
+	snapshot >/tmp/files-after
+	LC_ALL=C comm -13 /root/files-before /tmp/files-after >/tmp/files-left
+	check "purge: no file left behind ($(wc -l </tmp/files-left) new since before the install)" \
+		test ! -s /tmp/files-left
+	head -20 /tmp/files-left | sed 's/^/BOOTTEST # left: /'
 	;;
 esac
 echo "BOOTTEST done"

@@ -118,7 +118,7 @@ name = re.search(r'#define ANDROID_SOCKET_NAME\s+"(\w+)"',
 # the service options used here, indented below a service
 options = {"class", "socket", "user", "group", "capabilities", "task_profiles",
            "oneshot", "disabled", "seclabel", "writepid", "file", "critical",
-           "ioprio", "priority", "setenv", "onrestart", "rlimit"}
+           "ioprio", "priority", "setenv", "onrestart", "rlimit", "stdio_to_kmsg"}
 services, section = {}, None
 for line in open(src + "/contrib/android/as9888-calibd.rc").read().splitlines():
     if not line.strip() or line.lstrip().startswith("#"):

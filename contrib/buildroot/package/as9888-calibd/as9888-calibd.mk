@@ -33,7 +33,32 @@ define AS9888_CALIBD_INSTALL_INIT_SYSTEMD
 		>$(TARGET_DIR)/usr/lib/systemd/system-preset/80-as9888-calibd.preset
 endef
 else
-AS9888_CALIBD_CONF_OPTS += -Dsystemd=false
+# BusyBox init or sysvinit: the init script as S45as9888-calibd (after the
+# modules, before the consumers), and the restore on hotplug through mdev's
+# line or eudev's rule (contrib/sysvinit/)
+AS9888_CALIBD_CONF_OPTS += -Dsystemd=false -Dsysvinit=true
+define AS9888_CALIBD_INSTALL_INIT_SYSV
+	mv $(TARGET_DIR)/etc/init.d/as9888-calibd \
+		$(TARGET_DIR)/etc/init.d/S45as9888-calibd
+	sed -i 's|/etc/init.d/as9888-calibd hotplug|/etc/init.d/S45as9888-calibd hotplug|' \
+		$(TARGET_DIR)/etc/init.d/S45as9888-calibd
+endef
+ifeq ($(BR2_ROOTFS_DEVICE_CREATION_DYNAMIC_MDEV),y)
+define AS9888_CALIBD_MDEV_LINE
+	grep -q as9888-calibd $(TARGET_DIR)/etc/mdev.conf || \
+		sed -i "1i $$(sed -n 's|/etc/init.d/as9888-calibd|/etc/init.d/S45as9888-calibd|; /^-SUBSYSTEM/p' \
+			$(@D)/contrib/sysvinit/mdev.conf)" $(TARGET_DIR)/etc/mdev.conf
+endef
+AS9888_CALIBD_POST_INSTALL_TARGET_HOOKS += AS9888_CALIBD_MDEV_LINE
+endif
+ifeq ($(BR2_ROOTFS_DEVICE_CREATION_DYNAMIC_EUDEV),y)
+define AS9888_CALIBD_EUDEV_RULE
+	sed 's|/etc/init.d/as9888-calibd|/etc/init.d/S45as9888-calibd|' \
+		$(@D)/contrib/sysvinit/61-as9888-calibd-hotplug.rules \
+		>$(TARGET_DIR)/lib/udev/rules.d/61-as9888-calibd-hotplug.rules
+endef
+AS9888_CALIBD_POST_INSTALL_TARGET_HOOKS += AS9888_CALIBD_EUDEV_RULE
+endif
 endif
 
 $(eval $(meson-package))

@@ -1,0 +1,51 @@
+# SPDX-License-Identifier: GPL-2.0
+# shellcheck shell=bash
+#
+# Helpers of the boot test's guest scripts (guest-test.sh under systemd,
+# guest-busybox.sh under BusyBox init): result lines, the AS9888 IIO
+# device, and whether the record in $rec is applied to it.
+rec=${rec:-/var/lib/as9888/calibration}
+ok() { echo "BOOTTEST ok - $*"; }
+bad() { echo "BOOTTEST not ok - $*"; }
+check() { local what=$1; shift; if "$@"; then ok "$what"; else bad "$what"; fi; }
+
+dev() {	# the sysfs directory of the IIO device named $1, default the accelerometer's
+	local d
+	for d in /sys/bus/iio/devices/iio:device*; do
+		[ "$(cat "$d/name" 2>/dev/null)" = "${1:-as9888-accel}" ] && { readlink -f "$d"; return 0; }
+	done
+	return 1
+}
+wait_dev() { for _ in $(seq 100); do dev >/dev/null && return 0; sleep 0.2; done; return 1; }
+t_level() { awk '$1 == "t_level" { printf "%d", $3 * 1000 + ($3 < 0 ? -0.5 : 0.5) }' "$rec"; }
+applied() {
+	local d
+	d=$(dev) || return 1
+	[ "$(cat "$d/in_accel_calibtemp")" = "$(t_level)" ] &&
+		[ "$(cat "$d/in_accel_z_caliboffset")" != 0.000000 ]
+}
+wait_applied() { for _ in $(seq 150); do applied && return 0; sleep 0.2; done; return 1; }
+# rebind: the driver lets the device go and probes it again (defaults)
+rebind() {
+	local i2c
+	i2c=$(basename "$(readlink -f "$(dev)/..")")
+	echo "$i2c" >/sys/bus/i2c/drivers/as9888_i2c/unbind
+	sleep 1
+	echo "$i2c" >/sys/bus/i2c/drivers/as9888_i2c/bind
+	wait_dev
+}
+# the image's files, as a sorted list (for "purge leaves nothing"): not
+# what the kernel, the boot, logs, caches and package management keep
+# (/proc /sys /dev /run /tmp /var/tmp /var/log /var/cache /var/lib/apt
+# /var/lib/dpkg), nor the test's own /root, nor systemd's state of a boot
+# (/var/lib/systemd but for the enablement records of deb-systemd-helper),
+# nor dkms's signing key (/var/lib/dkms/mok.*, made on dkms's first build:
+# dkms's, not the package's)
+snapshot() {
+	(cd / && find . -xdev \( -path ./proc -o -path ./sys -o -path ./dev -o -path ./run \
+		-o -path ./tmp -o -path ./var/tmp -o -path ./var/log -o -path ./var/cache \
+		-o -path ./var/lib/apt -o -path ./var/lib/dpkg -o -path ./root \) -prune -o -print) |
+		sed 's|^\.||' |
+		grep -Ev '^/var/lib/systemd/(random-seed|timers|catalog|coredump|linger|pstore|backlight|timesync)(/|$)|^/var/lib/dkms/mok\.(key|pub)$|^/etc/machine-id$' |
+		LC_ALL=C sort
+}
