@@ -14,7 +14,9 @@
 #           rebind, a late instantiation and the driver module loaded
 #           after boot are applied again, and the socket answers
 #           "request status" for a user in SocketGroup.
-# Prints "BOOTTEST ok|not ok - what" lines and "BOOTTEST done".
+# Prints "BOOTTEST plan N" (the checks this phase makes: the host fails a
+# phase that made another number), "BOOTTEST ok|not ok - what" lines and
+# "BOOTTEST done". A check added here adds one to its phase's plan.
 set -u
 phase=$(sed -n 's/.*as9888\.phase=\([a-z]*\).*/\1/p' /proc/cmdline)
 rec=/var/lib/as9888/calibration
@@ -64,6 +66,17 @@ gone_and_back() {
 }
 restore_unit() { systemctl list-units --all --plain --no-legend 'as9888-calibd-restore@*' | awk '{ print $1; exit }'; }
 
+# the plan: 5 checks for every phase, then the phase's own
+case $phase in
+factory) echo "BOOTTEST plan $((5 + 5))" ;;
+boot) echo "BOOTTEST plan $((5 + 8 + 2 * 5))" ;;
+*)
+	echo "BOOTTEST plan 1"
+	bad "as9888.phase='$phase' on the kernel command line is not a phase (factory, boot)"
+	echo "BOOTTEST done"
+	exit 1
+	;;
+esac
 echo "BOOTTEST phase $phase, kernel $(uname -r), systemd $(systemctl --version | awk 'NR == 1 { print $2 }')"
 check "the AS9888 IIO device is there (driver from DKMS, adapter at boot)" wait_dev
 check "its magnetometer device (as9888-magn) beside it, below the same bus device" \
@@ -139,6 +152,9 @@ boot)
 		eval '! runuser -u nobody -- as9888-calibd request status >/tmp/st1.log 2>&1 &&
 		      grep -q "Permission denied: run as root, or ask to be added to group as9888" /tmp/st1.log'
 	sed 's/^/BOOTTEST # /' /tmp/st1.log | head -2
+	;;
+*)
+	bad "no checks for phase '$phase'"
 	;;
 esac
 echo "BOOTTEST done"
