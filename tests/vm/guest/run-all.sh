@@ -1,7 +1,9 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-2.0
 # Runs every /tests/tests/*.sh in order in one shell (they share lib.sh's
-# counters) and prints the TAP plan at the end.
+# counters) and prints the TAP plan at the end. After each file, its own
+# plan and the checks it made ("# AS9888-PLAN <file> planned=P made=M"),
+# which the host compares.
 . /tests/lib.sh
 # /tests/only (from AS9888_VM_ONLY on the host): run only these files
 for t in /tests/tests/*.sh; do
@@ -9,7 +11,11 @@ for t in /tests/tests/*.sh; do
 		continue
 	fi
 	diag "--- $(basename "$t") (uptime $(cut -d' ' -f1 /proc/uptime) s)"
+	# the file's plan (lib.sh plan) against the checks it made, for the host
+	T_PLAN=""
+	T_FILE0=$T_N
 	. "$t"
+	diag "AS9888-PLAN $(basename "$t" .sh) planned=${T_PLAN:-none} made=$((T_N - T_FILE0))"
 done
 leak_check
 echo "1..$T_N"
