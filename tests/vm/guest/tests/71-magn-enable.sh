@@ -2,6 +2,7 @@
 # The magnetometer is measured (SLCT2.MEN) only when the magn device asks
 # for it: a magnetometer channel read, or its buffer running; never for the
 # accel device, whatever it scans. Counted by the chip model.
+plan 17
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 T=$(dr_trig)
