@@ -29,8 +29,10 @@
 # Userspace: the Meson suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
 # conformance, simulator, factory test engine, record, save failure
-# injection), a bounded libFuzzer run of every parser of outside data, the systemd
-# unit check, and a release build of the factory-test benchmark.
+# injection), the mutation check of the arithmetic and the factory-test
+# engine against that suite (scripts/mutate.sh), a bounded libFuzzer run
+# of every parser of outside data, the systemd unit check, and a release
+# build of the factory-test benchmark.
 set -uo pipefail
 
 top=$(cd "$(dirname "$0")/.." && pwd)
@@ -193,6 +195,7 @@ benchmark() {
 
 stage "setup" "$top/scripts/setup.sh"
 stage "meson test (ASan+UBSan)" meson_suite
+stage "mutation check: every mutant of tests/mutate/mutants.txt killed" "$top/scripts/mutate.sh"
 stage "fuzz the parsers (60 s shared by the targets)" "$top/scripts/fuzz.sh" 60
 stage "release build" release_build
 stage "gpio.c against libgpiod 2.x" "$top/scripts/libgpiod2-check.sh"
