@@ -138,7 +138,7 @@ kunit_suite() {
 		fi
 		read -r p f s < <(sed 's/\x1b\[[0-9;]*m//g' "$klog" | awk '
 			/^\[[0-9:]+\] \[PASSED\] / { p++ }
-			/^\[[0-9:]+\] \[(FAILED|CRASHED|TIMED OUT|NO TESTS)\] / { f++ }
+			/^\[[0-9:]+\] \[(FAILED|CRASHED|TIMED OUT|NO TESTS RUN)\] / { f++ }
 			/^\[[0-9:]+\] \[SKIPPED\] / { s++ }
 			END { print p + 0, f + 0, s + 0 }')
 		total=$(sed -n "s/^kunit $k: \([0-9]*\) tests.*/\1/p" "$log" | tail -n1)
