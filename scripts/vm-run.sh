@@ -474,6 +474,9 @@ for f in "$GUEST"/tests/*.sh; do
 	fi
 	FILES+=("$f")
 done
+for f in ${AS9888_VM_ONLY:-}; do
+	[ -f "$GUEST/tests/$f.sh" ] || die "AS9888_VM_ONLY: no test file $GUEST/tests/$f.sh"
+done
 [ ${#FILES[@]} -gt 0 ] || die "AS9888_VM_ONLY='${AS9888_VM_ONLY:-}' names no test file of $GUEST/tests"
 
 build_daemon
