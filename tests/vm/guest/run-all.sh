@@ -10,12 +10,14 @@ for t in /tests/tests/*.sh; do
 	if [ -s /tests/only ] && ! grep -qx "$(basename "$t" .sh)" /tests/only; then
 		continue
 	fi
-	diag "--- $(basename "$t") (uptime $(cut -d' ' -f1 /proc/uptime) s)"
+	# (the file's name kept apart: a test file may use $t for itself)
+	RA_FILE=$(basename "$t" .sh)
+	diag "--- $RA_FILE.sh (uptime $(cut -d' ' -f1 /proc/uptime) s)"
 	# the file's plan (lib.sh plan) against the checks it made, for the host
 	T_PLAN=""
 	T_FILE0=$T_N
 	. "$t"
-	diag "AS9888-PLAN $(basename "$t" .sh) planned=${T_PLAN:-none} made=$((T_N - T_FILE0))"
+	diag "AS9888-PLAN $RA_FILE planned=${T_PLAN:-none} made=$((T_N - T_FILE0))"
 done
 leak_check
 echo "1..$T_N"
