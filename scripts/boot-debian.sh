@@ -36,8 +36,11 @@
 # rebuilds only what changed and boots three times. Needs root (debootstrap,
 # chroot, loop mount); installs the Debian packages it lacks. Each boot is
 # bounded (AS9888_BOOT_TIMEOUT, 1500 s): a guest that stalls is stopped and
-# reported with its log and the last check it printed. Prints
-# "boot-debian: N passed, M failed" and the times.
+# reported with its log and the last check it printed. Each phase's guest
+# prints its plan ("BOOTTEST plan N", tests/boot/guest-test.sh and
+# guest-busybox.sh); a phase that made another number of checks, or printed
+# no plan, is one more failure. Prints "boot-debian: N passed, M failed
+# (T s in all)".
 set -euo pipefail
 
 # shellcheck source=scripts/kernel-common.sh
@@ -216,7 +219,14 @@ boot() {
 		-nic none </dev/null >"$work/$1.log" 2>&1 || rc=$?
 	log "boot $1: $(( $(date +%s) - t )) s"
 	grep -a '^BOOTTEST' "$work/$1.log" | tr -d '\r' || true
-	grep -aq '^BOOTTEST done' "$work/$1.log" && return 0
+	if grep -aq '^BOOTTEST done' "$work/$1.log"; then
+		local plan made
+		plan=$(tr -d '\r' <"$work/$1.log" | sed -n 's/^BOOTTEST plan \([0-9]*\)$/\1/p' | head -n1)
+		made=$(grep -acE '^BOOTTEST (not )?ok - ' "$work/$1.log" || true)
+		[ -n "$plan" ] && [ "$plan" -eq "$made" ] ||
+			echo "BOOTTEST not ok - $1: $made checks made, the guest's plan says ${plan:-nothing}"
+		return 0
+	fi
 	last=$(grep -a '^BOOTTEST' "$work/$1.log" | tr -d '\r' | tail -n1 || true)
 	if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
 		echo "BOOTTEST not ok - $1: the guest stalled and was stopped after $boot_timeout s; last line: ${last:-none} (log $work/$1.log)"
@@ -227,5 +237,5 @@ boot() {
 { boot factory; boot busybox init=/usr/local/lib/as9888-bb/init; boot boot; } | tee "$work/results"
 passed=$(grep -c '^BOOTTEST ok' "$work/results" || true)
 failed=$(grep -c '^BOOTTEST not ok' "$work/results" || true)
-echo "boot-debian: $passed passed, $failed failed, $(( $(date +%s) - t0 )) s in all"
+echo "boot-debian: $passed passed, $failed failed ($(( $(date +%s) - t0 )) s in all)"
 [ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]

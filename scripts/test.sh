@@ -1,38 +1,77 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# Run every test of the project and end with "N passed, N failed".
+# Run every test of the project and end with "N passed, N failed, N skipped",
+# alone on the last line.
 #
-#   scripts/test.sh            everything
+#   scripts/test.sh            everything (the same as "all")
+#   scripts/test.sh all        everything
 #   scripts/test.sh userspace  only the userspace build and tests
+#
+# Any other argument is an error (exit 2). The final line counts every
+# check: a stage that counts its own (the Meson suite, KUnit per case, the
+# boot test, the VM bench per kernel) adds its counts, any other stage
+# counts as one; a stage that exits non-zero is at least one failure even
+# when it counted none; a skipped check (a TAP "# SKIP", a KUnit skip) is
+# counted as skipped, never as passed. The exit status is 0 only when
+# nothing failed. A full run refuses the variables that narrow a stage
+# (AS9888_VM_ONLY, AS9888_SERIES_SKIP_DOCS): a narrowed run is not "all".
 #
 # Kernel: the two kernel trees from Debian's packages (6.1 LTS and the
 # newest, 7.2), the driver built against both with W=1, sparse and
 # checkpatch --strict, the devicetree binding checked with dt-schema, the
 # KUnit suite on both under UML, the DKMS build on Debian 12's headers, the
-# boot test (a debootstrap Debian 12 with Debian's own kernel, the driver
-# from DKMS and systemd as PID 1, booted twice in QEMU), and the VM bench:
+# Debian packages (dpkg-buildpackage, lintian), the boot test (a debootstrap
+# Debian 12 with Debian's own kernel and the packages installed with apt,
+# booted three times in QEMU: systemd, BusyBox init, systemd with an
+# upgrade and a purge), and the VM bench:
 # debug kernels of both versions in QEMU with the driver bound to the
 # simulated chip of the test adapter, driven by real clients.
 #
 # Userspace: the Meson suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
 # conformance, simulator, factory test engine, record, save failure
-# injection), a bounded libFuzzer run of every parser of outside data, the systemd
-# unit check, and a release build of the factory-test benchmark.
+# injection), the mutation check of the arithmetic and the factory-test
+# engine against that suite (scripts/mutate.sh), a bounded libFuzzer run
+# of every parser of outside data, the systemd unit check, and a release
+# build of the factory-test benchmark.
 set -uo pipefail
 
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${AS9888_BUILD:-$top/build}
 export AS9888_BUILD=$build
+usage() {
+	echo "usage: scripts/test.sh [all|userspace]" >&2
+	exit 2
+}
+[ $# -le 1 ] || usage
 what=${1:-all}
+case $what in
+all | userspace) ;;
+*) usage ;;
+esac
+# A full run with a narrowing variable would report a smaller bench as
+# the whole: refuse it (run the stage's own script to narrow it)
+if [ "$what" = all ]; then
+	narrow=""
+	[ -z "${AS9888_VM_ONLY:-}" ] || narrow="$narrow AS9888_VM_ONLY=\"$AS9888_VM_ONLY\""
+	[ "${AS9888_SERIES_SKIP_DOCS:-0}" = 0 ] ||
+		narrow="$narrow AS9888_SERIES_SKIP_DOCS=$AS9888_SERIES_SKIP_DOCS"
+	if [ -n "$narrow" ]; then
+		echo "scripts/test.sh all: refusing a narrowed full run:$narrow" >&2
+		echo "(unset it, or run scripts/vm-run.sh / scripts/upstream-series.sh with it)" >&2
+		exit 2
+	fi
+fi
 passed=0
 failed=0
+skipped=0
 failures=()
 
-# A stage counts as one test, unless it counts its own (counted=1)
+# A stage counts as one test, unless it counts its own (counted=1). A stage
+# that fails without counting a failure of its own counts one more.
 stage() {
-	local name=$1
+	local name=$1 failed0=$failed
 	shift
 	echo "== $name"
 	counted=0
@@ -40,7 +79,7 @@ stage() {
 		[ $counted -eq 1 ] || passed=$((passed + 1))
 		echo "-- $name: pass"
 	else
-		[ $counted -eq 1 ] || failed=$((failed + 1))
+		[ "$failed" -gt "$failed0" ] || failed=$((failed + 1))
 		failures+=("$name")
 		echo "-- $name: FAIL"
 	fi
@@ -52,17 +91,25 @@ meson_suite() {
 		meson setup "$dir" "$top" -Dwerror=true -Db_sanitize=address,undefined \
 			-Db_lundef=false >/dev/null || return 1
 	ninja -C "$dir" || return 1
+	# this run's log only: a log left by an earlier run counts nothing
+	rm -f "$dir/meson-logs/testlog.json"
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 		meson test -C "$dir" --num-processes 2 --print-errorlogs
 	local rc=$?
-	# count the suite's own tests into the summary
-	local ok fail
-	ok=$(grep -c '"result": "OK"' "$dir/meson-logs/testlog.json" || true)
-	fail=$(grep -vc '"result": "OK"' "$dir/meson-logs/testlog.json" || true)
+	# count the suite's own tests into the summary: every result but OK
+	# is a failure (a SKIP too: the suite has all it needs, setup.sh
+	# installs it, so a skip is a test that did not run)
+	local ok=0 fail=0
+	if [ -f "$dir/meson-logs/testlog.json" ]; then
+		ok=$(grep -c '"result": "OK"' "$dir/meson-logs/testlog.json" || true)
+		fail=$(grep -vc '"result": "OK"' "$dir/meson-logs/testlog.json" || true)
+	fi
 	echo "meson: $ok tests passed, $fail failed"
 	passed=$((passed + ok))
 	failed=$((failed + fail))
 	counted=1
+	# no test ran: the stage fails (stage() counts it)
+	[ "$ok" -gt 0 ] || [ "$fail" -gt 0 ] || return 1
 	return $rc
 }
 
@@ -73,39 +120,63 @@ release_build() {
 	ninja -C "$dir"
 }
 
-# KUnit's own test counts go into the summary
+# KUnit's own per-case results go into the summary: the lines kunit.py
+# prints for each test case ("[PASSED] name", "[FAILED] ...", "[SKIPPED]",
+# "[CRASHED]"; a suite's or a parameterised case's own line is framed by
+# "=" and not counted) in this run's per-kernel logs. kunit.sh's summary
+# "kunit <k>: N tests" must agree with the cases counted.
 kunit_suite() {
-	local log=$build/kunit.log rc ok fail
+	local log=$build/kunit.log rc k klog ok=0 fail=0 skip=0 p f s n total
+	local logs=${AS9888_CACHE:-$HOME/.cache/as9888}/logs
+	: >"$build/kunit.start"
 	"$top/scripts/kunit.sh" all 2>&1 | tee "$log"
 	rc=${PIPESTATUS[0]}
-	ok=$(sed -n 's/^kunit [0-9.]*: \([0-9]*\) tests, \([0-9]*\) failed$/\1 \2/p' "$log" |
-		awk '{ s += $1 - $2 } END { print s + 0 }')
-	fail=$(sed -n 's/^kunit [0-9.]*: \([0-9]*\) tests, \([0-9]*\) failed$/\2/p' "$log" |
-		awk '{ s += $1 } END { print s + 0 }')
-	if [ "$ok" -eq 0 ]; then
-		return 1	# no test ran: the stage fails and counts as one
-	fi
+	for k in 6.1 7.2; do
+		klog=$logs/kunit-$k.log
+		if [ ! "$klog" -nt "$build/kunit.start" ]; then
+			echo "kunit $k: no log of this run ($klog)"
+			fail=$((fail + 1))
+			continue
+		fi
+		read -r p f s < <(sed 's/\x1b\[[0-9;]*m//g' "$klog" | awk '
+			/^\[[0-9:]+\] \[PASSED\] / { p++ }
+			/^\[[0-9:]+\] \[(FAILED|CRASHED|TIMED OUT|NO TESTS RUN)\] / { f++ }
+			/^\[[0-9:]+\] \[SKIPPED\] / { s++ }
+			END { print p + 0, f + 0, s + 0 }')
+		total=$(sed -n "s/^kunit $k: \([0-9]*\) tests.*/\1/p" "$log" | tail -n1)
+		n=$((p + f + s))
+		echo "kunit $k: $p passed, $f failed, $s skipped (per case)"
+		if [ "$n" -eq 0 ] || [ "$n" != "${total:-}" ]; then
+			echo "kunit $k: $n cases counted, kunit.sh says ${total:-nothing}: counted as a failure"
+			f=$((f + 1))
+		fi
+		ok=$((ok + p))
+		fail=$((fail + f))
+		skip=$((skip + s))
+	done
 	passed=$((passed + ok))
-	failed=$((failed + fail + (rc != 0 && fail == 0)))
+	failed=$((failed + fail))
+	skipped=$((skipped + skip))
 	counted=1
+	[ "$fail" -eq 0 ] || return 1
 	return $rc
 }
 
 # counted_run LOG PREFIX CMD...: run CMD, its output also into LOG, and
-# count its "PREFIX N passed, M failed" lines (summed) into the summary
+# count its "PREFIXN passed, N failed[, N skipped]" lines (summed) into the
+# summary
 counted_run() {
-	local log=$1 prefix=$2 rc ok fail
+	local log=$1 prefix=$2 rc ok fail skip
 	shift 2
 	"$@" 2>&1 | tee "$log"
 	rc=${PIPESTATUS[0]}
-	ok=$(sed -n "s/^$prefix\([0-9]*\) passed, \([0-9]*\) failed.*\$/\1/p" "$log" |
-		awk '{ s += $1 } END { print s + 0 }')
-	fail=$(sed -n "s/^$prefix\([0-9]*\) passed, \([0-9]*\) failed.*\$/\2/p" "$log" |
-		awk '{ s += $1 } END { print s + 0 }')
-	# no test ran: the stage fails and counts as one
+	read -r ok fail skip < <(sed -n "s/^$prefix\([0-9]*\) passed, \([0-9]*\) failed\(, \([0-9]*\) skipped\)\{0,1\}\( .*\)\{0,1\}\$/\1 \2 \4/p" "$log" |
+		awk '{ p += $1; f += $2; s += $3 } END { print p + 0, f + 0, s + 0 }')
+	# no test ran: the stage fails (stage() counts it)
 	[ "$ok" -gt 0 ] || [ "$fail" -gt 0 ] || return 1
 	passed=$((passed + ok))
-	failed=$((failed + fail + (rc != 0 && fail == 0)))
+	failed=$((failed + fail))
+	skipped=$((skipped + skip))
 	counted=1
 	return $rc
 }
@@ -126,6 +197,7 @@ benchmark() {
 
 stage "setup" "$top/scripts/setup.sh"
 stage "meson test (ASan+UBSan)" meson_suite
+stage "mutation check: every mutant of tests/mutate/mutants.txt killed" "$top/scripts/mutate.sh"
 stage "fuzz the parsers (60 s shared by the targets)" "$top/scripts/fuzz.sh" 60
 stage "release build" release_build
 stage "gpio.c against libgpiod 2.x" "$top/scripts/libgpiod2-check.sh"
@@ -151,5 +223,7 @@ fi
 
 echo
 [ ${#failures[@]} -eq 0 ] || printf 'failed: %s\n' "${failures[@]}"
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+# every failed stage is at least one failure (stage()), so the line and
+# the exit status agree with the list above
+echo "$passed passed, $failed failed, $skipped skipped"
+[ "$failed" -eq 0 ] && [ ${#failures[@]} -eq 0 ]

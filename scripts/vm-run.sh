@@ -17,9 +17,17 @@
 # A kernel fails when a test fails, when the guest stalls, when the end
 # marker is missing (hang, panic) or on any kernel splat in the serial log
 # (BUG, WARNING, KASAN, lockdep, Oops, panic, kmemleak leak, hung task).
-# Prints "<k>: N passed, N failed" per kernel (", N skipped" when a test
-# printed a TAP "# SKIP": not counted as passed); exit status 0 only when
-# none failed.
+# Expected totals: every test file declares the checks it makes ("plan N",
+# tests/vm/guest/lib.sh); the guest prints "# AS9888-PLAN <file>
+# planned=P made=M" after each file, and each file that was to run (all,
+# or AS9888_VM_ONLY's) but has no such line, or made another number of
+# checks than its plan, is one more failure. Prints "<k>: N passed, N
+# failed" per kernel (", N skipped" when a test printed a TAP "# SKIP":
+# not counted as passed); exit status 0 only when none failed.
+#
+# "all" builds both kernels one after the other, then runs the two guests
+# side by side (a TCG guest keeps one core busy): each with its own serial
+# log, stall watchdog and summary line.
 #
 # Everything goes to $AS9888_CACHE/vm/ (logs: $AS9888_CACHE/logs/vm-run-<k>.log).
 # One run at a time per cache (lock $AS9888_CACHE/.vm.lock: a second run
@@ -363,10 +371,7 @@ pack_initramfs() {
 	cp "$GUEST/lib.sh" "$GUEST/run-all.sh" "$root/tests/"
 	cp -r "$GUEST/tests" "$root/tests/tests"
 	# AS9888_VM_ONLY="10-probe 90-spi": run only these test files
-	: >"$root/tests/only"
-	if [ -n "${AS9888_VM_ONLY:-}" ]; then
-		printf '%s\n' $AS9888_VM_ONLY >"$root/tests/only"
-	fi
+	printf '%s\n' "${FILES[@]}" >"$root/tests/only"
 	chmod +x "$root/init" "$root/tests/run-all.sh"
 	(cd "$root" && find . -print0 | cpio --null -o -H newc --quiet | gzip -1) >"$out"
 	INITRD="$out"
@@ -374,18 +379,19 @@ pack_initramfs() {
 
 SPLAT_RE='BUG:|WARNING:|KASAN|UBSAN|general protection|Oops|Kernel panic|possible recursive locking|possible circular locking|possible irq lock inversion|inconsistent lock state|suspicious RCU usage|unreferenced object|blocked for more than|scheduling while atomic|sleeping function called from invalid context|Call Trace'
 
-RESULTS=()
-FAILED=0
+# run_one K: boot kernel K's guest (initramfs packed) under the stall
+# watchdog and judge its log; writes the summary line to $VM_DIR/result-K
+# and returns non-zero when K failed
 run_one() {
 	local k="$1"
 	local log="$LOG_DIR/vm-run-$k.log" t rc=0 pass fail skip splat qpid
-	local lines=0 n quiet=0 stalled=""
-	pack_initramfs "$k"
+	local lines=0 n quiet=0 stalled="" initrd="$VM_DIR/initramfs-$k.cpio.gz"
+	rm -f "$VM_DIR/result-$k"
 	t=$(now)
 	log "$k: booting $VM_DIR/build-$k/arch/x86/boot/bzImage (log: $log)"
 	timeout -k 10 "$TIMEOUT" qemu-system-x86_64 -accel tcg -m 1G \
 		-nographic -no-reboot -monitor none -serial stdio \
-		-kernel "$VM_DIR/build-$k/arch/x86/boot/bzImage" -initrd "$INITRD" \
+		-kernel "$VM_DIR/build-$k/arch/x86/boot/bzImage" -initrd "$initrd" \
 		-append "console=ttyS0 loglevel=5 oops=panic panic_on_warn=1 panic=-1 kmemleak=on $GUEST_CLOCK" \
 		</dev/null >"$log" 2>&1 &
 	qpid=$!
@@ -425,6 +431,19 @@ run_one() {
 		fail=$((fail + 1))
 		warn "$k: TAP plan '${plan:-none}' does not match $pass passed + $fail failed + $skip skipped"
 	fi
+	# each test file that was to run made the checks its plan says
+	local f p made
+	for f in "${FILES[@]}"; do
+		p=$(sed -n "s/^# AS9888-PLAN $f planned=\([0-9a-z]*\) made=[0-9]*\$/\1/p" "$log" | tail -n1)
+		made=$(sed -n "s/^# AS9888-PLAN $f planned=[0-9a-z]* made=\([0-9]*\)\$/\1/p" "$log" | tail -n1)
+		if [ -z "$made" ]; then
+			fail=$((fail + 1))
+			warn "$k: $f: did not run to its end (no AS9888-PLAN line)"
+		elif [ "$p" != "$made" ]; then
+			fail=$((fail + 1))
+			warn "$k: $f: made $made checks, its plan says $p"
+		fi
+	done
 	if [ -n "$stalled" ]; then
 		fail=$((fail + 1))
 		warn "$k: stalled in $stalled: no TAP line for $STALL s (stopped at $(since "$t")); last lines of $log:"
@@ -440,21 +459,61 @@ run_one() {
 		warn "$k: kernel splat in the serial log ($log):"
 		printf '%s\n' "$splat" | head -n 20 >&2
 	fi
-	[ "$fail" -eq 0 ] || FAILED=1
 	local skipped=""
 	[ "$skip" -eq 0 ] || skipped=", $skip skipped"
-	RESULTS+=("$k: $pass passed, $fail failed$skipped ($(since "$t") in QEMU)")
+	echo "$k: $pass passed, $fail failed$skipped ($(since "$t") in QEMU)" >"$VM_DIR/result-$k"
+	[ "$fail" -eq 0 ]
 }
+
+# The test files that are to run: every tests/*.sh, or AS9888_VM_ONLY's
+FILES=()
+for f in "$GUEST"/tests/*.sh; do
+	f=$(basename "$f" .sh)
+	if [ -n "${AS9888_VM_ONLY:-}" ]; then
+		case " $(echo $AS9888_VM_ONLY) " in *" $f "*) ;; *) continue ;; esac
+	fi
+	FILES+=("$f")
+done
+for f in ${AS9888_VM_ONLY:-}; do
+	[ -f "$GUEST/tests/$f.sh" ] || die "AS9888_VM_ONLY: no test file $GUEST/tests/$f.sh"
+done
+[ ${#FILES[@]} -gt 0 ] || die "AS9888_VM_ONLY='${AS9888_VM_ONLY:-}' names no test file of $GUEST/tests"
 
 build_daemon
 build_tools_iio
 stage_sensor_proxy
 stage_trixie
 guest_clock
+# the builds one after the other (each uses both cores) ...
 for k in "${WANT[@]}"; do
 	"$AS9888_REPO/scripts/vm-kernel.sh" "$k"
-	run_one "$k"
+	pack_initramfs "$k"
 done
-for r in "${RESULTS[@]}"; do echo "$r"; done
+# ... the guests side by side, each judged on its own; their reports
+# (the failures and diagnostics of each kernel) one after the other
+PIDS=()
+for k in "${WANT[@]}"; do
+	run_one "$k" >"$VM_DIR/report-$k" 2>&1 &
+	PIDS+=("$!")
+done
+log "guests of ${WANT[*]} started (serial logs: $LOG_DIR/vm-run-<k>.log)"
+# a bench stopped from outside stops both guests (each run_one kills its own)
+trap 'kill "${PIDS[@]}" 2>/dev/null; wait; exit 143' TERM INT
+FAILED=0
+for i in "${!WANT[@]}"; do
+	wait "${PIDS[$i]}" || FAILED=1
+done
+trap - TERM INT
+for k in "${WANT[@]}"; do
+	cat "$VM_DIR/report-$k"
+done
+for k in "${WANT[@]}"; do
+	if [ -s "$VM_DIR/result-$k" ]; then
+		cat "$VM_DIR/result-$k"
+	else
+		echo "$k: 0 passed, 1 failed (the bench of $k ended without a result)"
+		FAILED=1
+	fi
+done
 log "done in $(since "$T_START")"
 exit "$FAILED"

@@ -275,8 +275,9 @@ static int iio_step1(struct ftest_ctx *x)
 
 	ftest_skip(x, "1-2.rstn", "RSTN pin check (D11)",
 		   "the driver owns RSTN (--backend raw with the driver unbound checks it)");
-	ftest_judge(x, "1-4", "device ID (WIA)", true, "0x48",
-		    "checked by the driver when it bound to %s", d->dir);
+	/* the driver reads WIA at probe and binds to nothing else */
+	ftest_skip(x, "1-4", "device ID (WIA)",
+		   "not read here: the driver reads it when it binds and refuses any other value");
 
 	/*
 	 * The test takes the buffer, never from another program: a capture
@@ -706,8 +707,9 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	if (ret)
 		return ftest_io_failed(x, step, d->chardev, ret);
 	snprintf(id, sizeof(id), "%s.int1", step);
+	/* all n samples came through the trigger, which INT1 fires */
 	if (!d->int1_seen)
-		ftest_judge(x, id, "INT1 pin check (D11)", true,
+		ftest_judge(x, id, "INT1 pin check (D11)", r->n == n,
 			    "the data-ready trigger fires on INT1",
 			    "%u samples from %s", r->n, d->trigger);
 	d->int1_seen = true;

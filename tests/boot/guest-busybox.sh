@@ -10,8 +10,9 @@
 # mdev's hotplug line applies it again with the daemon stopped, and the
 # daemon with it running; start|stop|restart|status; and that a board
 # without a record gets one warning in syslog and keeps booting.
-# Prints "BOOTTEST ok|not ok - what" lines and "BOOTTEST done", then
-# powers the machine off.
+# Prints "BOOTTEST plan N" (the checks it makes: the host fails a run that
+# made another number; a check added here adds one), "BOOTTEST ok|not ok -
+# what" lines and "BOOTTEST done", then powers the machine off.
 set -u
 # shellcheck source=tests/boot/lib.sh
 . /usr/local/lib/as9888-boottest/lib.sh
@@ -27,6 +28,7 @@ status_is() { "$init" status >/dev/null; [ $? -eq "$1" ]; }
 
 # the first consumer: read the state before anything else happens
 if applied; then first=yes; else first=no; fi
+echo "BOOTTEST plan 14"
 echo "BOOTTEST phase busybox, kernel $(uname -r), PID 1: $(readlink /proc/1/exe) ($(tr '\0' ' ' </proc/1/cmdline))"
 check "PID 1 is BusyBox init, no systemd, no udev" \
 	eval '[ "$(readlink -f /proc/1/exe)" = "$(readlink -f /bin/busybox)" ] && [ ! -d /run/systemd/system ] &&

@@ -14,7 +14,9 @@
 #           rebind, a late instantiation and the driver module loaded
 #           after boot are applied again, and the socket answers
 #           "request status" for a user in SocketGroup.
-# Prints "BOOTTEST ok|not ok - what" lines and "BOOTTEST done".
+# Prints "BOOTTEST plan N" (the checks this phase makes: the host fails a
+# phase that made another number), "BOOTTEST ok|not ok - what" lines and
+# "BOOTTEST done". A check added here adds one to its phase's plan.
 set -u
 phase=$(sed -n 's/.*as9888\.phase=\([a-z]*\).*/\1/p' /proc/cmdline)
 # shellcheck source=tests/boot/lib.sh
@@ -44,6 +46,17 @@ gone_and_back() {
 }
 restore_unit() { systemctl list-units --all --plain --no-legend 'as9888-calibd-restore@*' | awk '{ print $1; exit }'; }
 
+# the plan: 5 checks for every phase, then the phase's own
+case $phase in
+factory) echo "BOOTTEST plan $((5 + 8))" ;;
+boot) echo "BOOTTEST plan $((5 + 8 + 2 * 5 + 6))" ;;
+*)
+	echo "BOOTTEST plan 1"
+	bad "as9888.phase='$phase' on the kernel command line is not a phase (factory, boot)"
+	echo "BOOTTEST done"
+	exit 1
+	;;
+esac
 echo "BOOTTEST phase $phase, kernel $(uname -r), systemd $(systemctl --version | awk 'NR == 1 { print $2 }')"
 check "the AS9888 IIO device is there (driver from DKMS, adapter at boot)" wait_dev
 check "its magnetometer device (as9888-magn) beside it, below the same bus device" \
@@ -153,6 +166,9 @@ boot)
 	check "purge: no file left behind ($(wc -l </tmp/files-left) new since before the install)" \
 		test ! -s /tmp/files-left
 	head -20 /tmp/files-left | sed 's/^/BOOTTEST # left: /'
+	;;
+*)
+	bad "no checks for phase '$phase'"
 	;;
 esac
 echo "BOOTTEST done"

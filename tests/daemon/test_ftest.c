@@ -16,9 +16,114 @@
 #include "as9888_unit.h"
 #include "backend_sim.h"
 #include "ftest.h"
+#include "transport.h"
 
-static void run_unit(const char *text, const struct ftest_opts *opts,
-		     struct ftest_result *res)
+/*
+ * A transport between the engine and the simulator that changes one value
+ * of one accelerometer sample as it is read: the first sample of the
+ * first level run (@after_dac 0) or of the first run after the DAC write of
+ * 3-24 (@after_dac 1). ST1 comes in a read of its own, TMPS, EMPT and ST2
+ * in one burst (chip_read_sample()). The simulated chip is not touched.
+ */
+enum tamper_field { TAMPER_NONE, TAMPER_ST1, TAMPER_TMPS_PLUS, TAMPER_EMPT, TAMPER_ST2 };
+
+struct tamper {
+	struct transport t;	/* first: the engine's handle */
+	struct transport *in;
+	enum tamper_field field;
+	uint8_t val;		/* the value, or for TMPS the codes added */
+	int after_dac;
+	int dac_writes;
+	bool done;
+};
+
+static int tamper_read(struct transport *t, uint8_t reg, uint8_t *buf, size_t len)
+{
+	struct tamper *tp = (struct tamper *)t;
+	int ret = transport_read(tp->in, reg, buf, len);
+
+	if (ret || tp->done || tp->dac_writes != tp->after_dac)
+		return ret;
+	if (tp->field == TAMPER_ST1 && reg == AS9888_REG_ST1 && len == 1) {
+		buf[0] = tp->val;
+		tp->done = true;
+	} else if (tp->field != TAMPER_ST1 && reg == AS9888_REG_TMPS &&
+		   len == AS9888_REG_ST2 - AS9888_REG_TMPS + 1) {
+		if (tp->field == TAMPER_TMPS_PLUS)
+			buf[0] += tp->val;
+		else if (tp->field == TAMPER_EMPT)
+			buf[AS9888_REG_EMPT - AS9888_REG_TMPS] = tp->val;
+		else
+			buf[AS9888_REG_ST2 - AS9888_REG_TMPS] = tp->val;
+		tp->done = true;
+	}
+
+	return 0;
+}
+
+static int tamper_write(struct transport *t, uint8_t reg, const uint8_t *buf,
+			size_t len)
+{
+	struct tamper *tp = (struct tamper *)t;
+
+	if (reg == AS9888_REG_AXDA)
+		tp->dac_writes++;
+	return transport_write(tp->in, reg, buf, len);
+}
+
+static int tamper_set_rstn(struct transport *t, bool level)
+{
+	struct transport *in = ((struct tamper *)t)->in;
+
+	return in->ops->set_rstn(in, level);
+}
+
+static bool tamper_pin_monitored(struct transport *t, enum transport_pin pin)
+{
+	struct transport *in = ((struct tamper *)t)->in;
+
+	return in->ops->pin_monitored(in, pin);
+}
+
+static int tamper_wait_pin(struct transport *t, enum transport_pin pin,
+			   uint64_t timeout_ns)
+{
+	struct transport *in = ((struct tamper *)t)->in;
+
+	return in->ops->wait_pin(in, pin, timeout_ns);
+}
+
+static uint64_t tamper_now_ns(struct transport *t)
+{
+	return transport_now_ns(((struct tamper *)t)->in);
+}
+
+static void tamper_sleep_ns(struct transport *t, uint64_t ns)
+{
+	struct transport *in = ((struct tamper *)t)->in;
+
+	in->ops->sleep_ns(in, ns);
+}
+
+static void tamper_destroy(struct transport *t)
+{
+	transport_destroy(((struct tamper *)t)->in);
+}
+
+static const struct transport_ops tamper_ops = {
+	.read = tamper_read,
+	.write = tamper_write,
+	.set_rstn = tamper_set_rstn,
+	.pin_monitored = tamper_pin_monitored,
+	.wait_pin = tamper_wait_pin,
+	.now_ns = tamper_now_ns,
+	.sleep_ns = tamper_sleep_ns,
+	.destroy = tamper_destroy,
+};
+
+/* @tp (may be NULL): the change to make between the engine and the chip */
+static void run_unit_tampered(const char *text, const struct ftest_opts *opts,
+			      struct tamper *tp, struct ftest_result *res)
 {
 	struct as9888_unit_error uerr;
 	struct as9888_unit unit;
@@ -30,6 +135,12 @@ static void run_unit(const char *text, const struct ftest_opts *opts,
 	if (as9888_unit_parse(text, strlen(text), &unit, &uerr))
 		fail_msg("unit line %u: %s", uerr.line, uerr.msg);
 	assert_int_equal(backend_sim_open_unit(&unit, true, &t, err, sizeof(err)), 0);
+	if (tp) {
+		tp->t.ops = &tamper_ops;
+		tp->t.name = t->name;
+		tp->in = t;
+		t = &tp->t;
+	}
 	if (opts) {
 		o = *opts;
 	} else {
@@ -37,17 +148,26 @@ static void run_unit(const char *text, const struct ftest_opts *opts,
 	}
 	memset(res, 0, sizeof(*res));
 	ftest_run(t, &o, res);
+	if (tp)
+		assert_true(tp->done);	/* the change was made */
 	transport_destroy(t);
 }
 
+static void run_unit(const char *text, const struct ftest_opts *opts,
+		     struct ftest_result *res)
+{
+	run_unit_tampered(text, opts, NULL, res);
+}
+
 /* The first failed judgment is at @step; with @name_part, its name says so */
-static void expect_failure(const char *text, const struct ftest_opts *o,
-			   const char *step, const char *name_part)
+static void expect_failure_tampered(const char *text, const struct ftest_opts *o,
+				    struct tamper *tp, const char *step,
+				    const char *name_part)
 {
 	struct ftest_result res;
 	const struct judgment *j;
 
-	run_unit(text, o, &res);
+	run_unit_tampered(text, o, tp, &res);
 	j = report_first_failure(&res.report);
 	if (!j) {
 		report_print_text(stderr, &res.report);
@@ -63,15 +183,27 @@ static void expect_failure(const char *text, const struct ftest_opts *o,
 	ftest_result_free(&res);
 }
 
-static void expect_pass(const char *text, const struct ftest_opts *o,
-			struct ftest_result *res)
+static void expect_failure(const char *text, const struct ftest_opts *o,
+			   const char *step, const char *name_part)
 {
-	run_unit(text, o, res);
+	expect_failure_tampered(text, o, NULL, step, name_part);
+}
+
+static void expect_pass_tampered(const char *text, const struct ftest_opts *o,
+				 struct tamper *tp, struct ftest_result *res)
+{
+	run_unit_tampered(text, o, tp, res);
 	if (report_first_failure(&res->report)) {
 		report_print_text(stderr, &res->report);
 		fail_msg("unit failed");
 	}
 	assert_true(res->have_calibration);
+}
+
+static void expect_pass(const char *text, const struct ftest_opts *o,
+			struct ftest_result *res)
+{
+	expect_pass_tampered(text, o, NULL, res);
 }
 
 static void healthy_unit_passes(void **state)
@@ -311,6 +443,114 @@ static void no_drdy_times_out(void **state)
 	ftest_result_free(&res);
 }
 
+/*
+ * A bad status register on the first sample of a level run fails its step
+ * (the first offending sample has index 0), in both level runs
+ */
+static void bad_status_on_first_sample(void **state)
+{
+	static const struct {
+		enum tamper_field field;
+		uint8_t val;
+		const char *step[2];
+		const char *name;
+	} cases[] = {
+		{ TAMPER_ST1, AS9888_ST1_DRDY_MSK | AS9888_ST1_DOR_MSK,
+		  { "3-4", "3-29" }, "sample 0: 0x03" },
+		{ TAMPER_ST1, 0x00, { "3-4", "3-29" }, "sample 0: 0x00" },
+		{ TAMPER_EMPT, 0x01, { "3-6", "3-31" }, "sample 0: 0x01" },
+		{ TAMPER_ST2, 0x00, { "3-13", "3-38" }, "sample 0: 0x00" },
+		{ TAMPER_ST2, AS9888_ST2_HST_MSK | AS9888_ST2_HOFL_MSK,
+		  { "3-13", "3-38" }, "sample 0: 0x" },
+	};
+	unsigned int i;
+	int pass;
+
+	for (i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		for (pass = 0; pass < 2; pass++) {
+			struct tamper tp = {
+				.field = cases[i].field, .val = cases[i].val,
+				.after_dac = pass,
+			};
+
+			expect_failure_tampered("", NULL, &tp, cases[i].step[pass],
+						cases[i].name);
+		}
+	}
+}
+
+/*
+ * Note 4b: a TMPS spread of 1 code during averaging is stable, 2 codes are
+ * not (no time to wait it out: the run is judged as taken); with time to
+ * wait, the unstable run is taken again, and the new run passes
+ */
+static void tmps_spread_limit(void **state)
+{
+	static const char *const step[2] = { "3-5", "3-30" };
+	struct ftest_result res;
+	struct ftest_opts o;
+	int pass;
+
+	ftest_opts_default(&o);
+	o.stable_timeout_ms = 0;
+	for (pass = 0; pass < 2; pass++) {
+		struct tamper one = { .field = TAMPER_TMPS_PLUS, .val = 1, .after_dac = pass };
+		struct tamper two = { .field = TAMPER_TMPS_PLUS, .val = 2, .after_dac = pass };
+
+		expect_pass_tampered("", &o, &one, &res);
+		ftest_result_free(&res);
+		expect_failure_tampered("", &o, &two, step[pass], "temperature stable");
+	}
+
+	ftest_opts_default(&o);
+	for (pass = 0; pass < 2; pass++) {
+		struct tamper two = { .field = TAMPER_TMPS_PLUS, .val = 2, .after_dac = pass };
+
+		expect_pass_tampered("", &o, &two, &res);
+		ftest_result_free(&res);
+	}
+}
+
+/* Note 2: N = AS9888_SAMPLES_MAX is allowed, one more is not */
+static void samples_max_boundary(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	o.permissible_error_q16 = 4 * 65536;	/* a noiseless unit: N is the floor */
+	o.samples = AS9888_SAMPLES_MAX;
+	expect_pass("", &o, &res);
+	assert_int_equal(res.rec.samples, AS9888_SAMPLES_MAX);
+	ftest_result_free(&res);
+
+	o.samples = AS9888_SAMPLES_MAX + 1;
+	expect_failure("", &o, "3-3", "N 4097 (environment too noisy)");
+}
+
+/* D8 through the engine: the vertical axis reads less than St/2 */
+static void not_vertical_fails(void **state)
+{
+	/* Z reads St(25 degC) - 150 = about 108 LSB, below St/2 = 129 */
+	expect_failure("offset = 0 0 -150\n", NULL, "3-23",
+		       "vertical axis reads less than St/2");
+}
+
+/* D8 through the engine: a given gravity that is not one axis, +-1 */
+static void invalid_gravity_given_fails(void **state)
+{
+	static const s8 bad[][3] = { { 0, 0, 0 }, { 1, 0, -1 }, { 0, 0, -2 } };
+	struct ftest_opts o;
+	unsigned int i;
+
+	ftest_opts_default(&o);
+	o.gravity_given = true;
+	for (i = 0; i < sizeof(bad) / sizeof(bad[0]); i++) {
+		memcpy(o.gravity, bad[i], 3);
+		expect_failure("", &o, "3-23", "invalid gravity direction");
+	}
+}
+
 /* The same seed gives the same calibration */
 static void deterministic(void **state)
 {
@@ -343,6 +583,11 @@ int main(void)
 		cmocka_unit_test(keep_going_polls_drdy),
 		cmocka_unit_test(no_drdy_times_out),
 		cmocka_unit_test(deterministic),
+		cmocka_unit_test(bad_status_on_first_sample),
+		cmocka_unit_test(tmps_spread_limit),
+		cmocka_unit_test(samples_max_boundary),
+		cmocka_unit_test(not_vertical_fails),
+		cmocka_unit_test(invalid_gravity_given_fails),
 	};
 
 	return cmocka_run_group_tests_name("ftest", tests, NULL, NULL);

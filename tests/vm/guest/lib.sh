@@ -9,6 +9,29 @@ SIM=/sys/kernel/debug/as9888_sim
 MODDIR=/lib/modules/as9888
 
 diag() { echo "# $*"; }
+# plan N: the number of checks (ok, not ok, skip) this test file makes, at
+# its top. run-all.sh reports planned and made after the file, and the host
+# fails a file that made another number. A count that depends on what the
+# file finds (a loop over the devices present, a branch that checks more)
+# is planned as the number the bench's fixed setup gives, and the branch
+# that makes more or fewer says so with plan_more N / plan_more -N, next to
+# the checks it adds or drops, with the reason.
+T_PLAN=""
+T_FILE0=0
+plan() { T_PLAN=$1; }
+plan_more() { T_PLAN=$((T_PLAN + $1)); }
+# bail_rest REASON: the rest of this file cannot run (what it needs is not
+# there): every planned check not made yet fails with REASON (at least
+# one), so that the count stays true. The file then returns.
+bail_rest() {
+	_bl_i=$((T_N - T_FILE0))
+	nok "$1 (so the file's remaining checks are failed)"
+	_bl_i=$((_bl_i + 1))
+	while [ $_bl_i -lt "${T_PLAN:-0}" ]; do
+		nok "not made: planned check $((_bl_i + 1)) of $T_PLAN ($1)"
+		_bl_i=$((_bl_i + 1))
+	done
+}
 ok() {
 	T_N=$((T_N + 1)); T_PASS=$((T_PASS + 1))
 	echo "ok $T_N - $1"
@@ -39,11 +62,31 @@ check_not() {
 eq() {
 	if [ "$2" = "$3" ]; then ok "$1"; else nok "$1" "got '$2', want '$3'"; fi
 }
-# near NAME GOT WANT TOL (integers)
+# is_int VALUE: an optionally signed decimal integer
+is_int() {
+	case $1 in
+	'' | - | *[!0-9-]* | ?*-*) return 1 ;;
+	esac
+}
+# near NAME GOT WANT TOL (integers; GOT that is not one fails)
 near() {
-	_d=$(($2 - $3)); [ $_d -lt 0 ] && _d=$((-_d))
-	if [ -n "$2" ] && [ $_d -le $4 ]; then ok "$1"; else
-		nok "$1" "got $2, want $3 +- $4"; fi
+	if is_int "$2" && is_int "$3"; then
+		_d=$(($2 - $3)); [ $_d -lt 0 ] && _d=$((-_d))
+	else
+		_d=""
+	fi
+	if [ -n "$_d" ] && [ $_d -le $4 ]; then ok "$1"; else
+		nok "$1" "got '$2', want $3 +- $4"; fi
+}
+
+# kmsg_mark NAME: a line "as9888-bench: mark NAME" in the kernel log (at
+# KERN_INFO: not on the console); kmsg_since NAME PATTERN: a kernel message
+# after the last such mark matches PATTERN (grep). Only the messages of
+# what ran since count, however full the log is.
+kmsg_mark() { echo "<6>as9888-bench: mark $1" > /dev/kmsg; }
+kmsg_since() {
+	dmesg | awk -v m="as9888-bench: mark $1" 'index($0, m) { n = NR } { l[NR] = $0 }
+		END { for (i = n + 1; n && i <= NR; i++) print l[i] }' | grep -q "$2"
 }
 
 load_driver() {

@@ -1,15 +1,23 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-2.0
 # Runs every /tests/tests/*.sh in order in one shell (they share lib.sh's
-# counters) and prints the TAP plan at the end.
+# counters) and prints the TAP plan at the end. After each file, its own
+# plan and the checks it made ("# AS9888-PLAN <file> planned=P made=M"),
+# which the host compares.
 . /tests/lib.sh
 # /tests/only (from AS9888_VM_ONLY on the host): run only these files
 for t in /tests/tests/*.sh; do
 	if [ -s /tests/only ] && ! grep -qx "$(basename "$t" .sh)" /tests/only; then
 		continue
 	fi
-	diag "--- $(basename "$t") (uptime $(cut -d' ' -f1 /proc/uptime) s)"
+	# (the file's name kept apart: a test file may use $t for itself)
+	RA_FILE=$(basename "$t" .sh)
+	diag "--- $RA_FILE.sh (uptime $(cut -d' ' -f1 /proc/uptime) s)"
+	# the file's plan (lib.sh plan) against the checks it made, for the host
+	T_PLAN=""
+	T_FILE0=$T_N
 	. "$t"
+	diag "AS9888-PLAN $RA_FILE planned=${T_PLAN:-none} made=$((T_N - T_FILE0))"
 done
 leak_check
 echo "1..$T_N"

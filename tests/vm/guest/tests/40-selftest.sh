@@ -4,6 +4,7 @@
 # (none, pass, fail); the adjusted readings of the last test are in debugfs
 # iio/iio:deviceM/selftest_readings ("X Y Z", 3 decimals, or none), M the
 # magn device's number.
+plan 8
 set_unit "noise = 0"
 wait_dev 5
 RD=/sys/kernel/debug/iio/${MDEV##*/}/selftest_readings

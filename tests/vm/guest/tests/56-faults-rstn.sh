@@ -5,6 +5,7 @@
 # the driver pulses RSTN at probe without checking it. The chip has just
 # been powered on, so it is in its reset state anyway and probe works:
 # assert that, and that the pulse really had no effect on this unit.
+plan 11
 set_unit "temperature = 25" "noise = 0"
 check "healthy unit probes" wait_dev 5
 # at least one: RSTN is also held low while runtime PM has the supplies

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-2.0
 # 50 unbind/bind cycles, 50 reloads of as9888_i2c and 5 of the whole
 # driver (as9888_i2c, as9888_core, as9888_calib), then a kmemleak scan.
+plan 7
 set_unit "noise = 1"
 wait_dev 5
 C=$(client)

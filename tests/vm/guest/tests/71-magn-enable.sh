@@ -2,6 +2,7 @@
 # The magnetometer is measured (SLCT2.MEN) only when the magn device asks
 # for it: a magnetometer channel read, or its buffer running; never for the
 # accel device, whatever it scans. Counted by the chip model.
+plan 17
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 T=$(dr_trig)
@@ -18,9 +19,12 @@ scan() {
 	set -- "$1" "$2" $(snap)
 	# the magn device first, so that with both every measurement of the
 	# window is one it asked for
-	[ -z "$2" ] || buf_start $MDEV "$T" /tmp/magn-m.bin $2 || nok "magn buffer enable ($2)"
+	# (a buffer that does not start is a check more: plan_more)
+	[ -z "$2" ] || buf_start $MDEV "$T" /tmp/magn-m.bin $2 ||
+		{ plan_more 1; nok "magn buffer enable ($2)"; }
 	PM=$BUF_PID
-	[ -z "$1" ] || buf_start $DEV "$T" /tmp/magn-a.bin $1 || nok "accel buffer enable ($1)"
+	[ -z "$1" ] || buf_start $DEV "$T" /tmp/magn-a.bin $1 ||
+		{ plan_more 1; nok "accel buffer enable ($1)"; }
 	PA=$BUF_PID
 	sleep 1
 	[ -z "$1" ] || { _za=$(scan_bytes $DEV); echo 0 > $DEV/buffer/enable; }

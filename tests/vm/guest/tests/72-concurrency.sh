@@ -8,6 +8,7 @@
 # the capture keeps its rate and loses no sample. (The selftest is the
 # magn device's now: beside the accel buffer it runs, 73-split.sh; under
 # the magn device's own buffer it is refused, 58-bad-input.sh.)
+plan 15
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 set_cal 0 0 0 25000

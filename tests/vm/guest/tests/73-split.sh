@@ -17,6 +17,7 @@
 #    return, new devices probe and capture (a kernel splat fails the run on
 #    the host, and is named here).
 # Waits are for stalls only: 60 s without the samples waited for.
+plan 56
 set_unit "temperature = 25" "noise = 0"
 check "fresh unit: as9888-accel and as9888-magn" wait_dev 5
 set_cal 0 0 0 25000
@@ -69,6 +70,7 @@ if buf_start $DEV "$T" $O/all.bin all; then
 	eq "accel device, every scan element: every z sample 1 g (1024 +- 4)" "$(zbad $O/all.bin)" 0
 else
 	nok "accel device: buffer with every scan element on the data-ready trigger"
+	plan_more -4	# (one check instead of the capture's five)
 fi
 
 # --- 2. both devices buffering on the shared trigger ------------------------------
@@ -113,6 +115,7 @@ if buf_start $MDEV "$T" $O/m.bin magn_x magn_y magn_z timestamp; then
 		"$(magn_bad $O/m.bin)" 0
 else
 	nok "as9888-magn: buffer on the data-ready trigger"
+	plan_more -11	# (one check instead of the twelve of both buffers)
 fi
 
 # --- 3. magn raw reads while the accel buffer runs --------------------------------
@@ -151,6 +154,7 @@ if accel_start $O/r.bin; then
 	period_ok "accel capture with magn reads at 100 Hz" "$(period_us $O/r.bin)" 10000
 else
 	nok "accel buffer for the magn reads"
+	plan_more -7	# (one check instead of eight)
 	buf_stop $DEV "$BUF_PID" $O/r.bin
 fi
 
@@ -169,6 +173,7 @@ if accel_start $O/st.bin; then
 	eq "accel capture around the selftest: every z sample 1 g (1024 +- 4)" "$(zbad $O/st.bin)" 0
 else
 	nok "accel buffer for the selftest"
+	plan_more -4	# (one check instead of five)
 	buf_stop $DEV "$BUF_PID" $O/st.bin
 fi
 
@@ -187,6 +192,7 @@ done
 if [ -z "$OTHER" ]; then
 	skip "the data-ready trigger refuses an IIO device of another chip" \
 		"no IIO device with a trigger other than the AS9888's in this guest"
+	plan_more -3	# (one skip instead of four checks)
 else
 	n=$(cat $OTHER/name)
 	echo "" > $OTHER/trigger/current_trigger
@@ -205,7 +211,11 @@ else
 	echo "$T" > $MDEV/trigger/current_trigger
 	eq "as9888-magn (the same chip) takes $T" "$(cat $MDEV/trigger/current_trigger)" "$T"
 fi
-[ -z "$LOADED" ] || check "as9888_sim_other unloads" rmmod as9888_sim_other
+if [ -n "$LOADED" ]; then
+	check "as9888_sim_other unloads" rmmod as9888_sim_other
+else
+	plan_more -1	# (the other chip's module did not load: nothing to unload)
+fi
 
 # --- 6. unbind and module removal with both buffers running -----------------------
 n0=$(dmesg | wc -l)
@@ -248,6 +258,7 @@ for how in unbind rmmod; do
 		eq "$how: every z sample 1 g (1024 +- 4)" "$(zbad $O/after.bin)" 0
 	else
 		nok "$how: buffer enable on the new accel device"
+		plan_more -1	# (one check instead of the capture's two)
 	fi
 	check "$how: the new magn device reads (67 +- 1)" \
 		sh -c "v=\$(cat $MDEV/in_magn_x_raw) && [ \$v -ge 66 ] && [ \$v -le 68 ]"

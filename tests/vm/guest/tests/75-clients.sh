@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0
 # Real clients written by others: libgpiod's tools, the kernel's tools/iio.
+plan 11
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 D=$(gpiodetect 2>&1)

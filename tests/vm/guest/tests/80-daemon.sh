@@ -8,6 +8,7 @@
 # a record of another chip, and a record of the simulator (source =
 # simulator: a simulated calibration is never applied to a chip).
 # Leaves /tmp/rec and /tmp/unit.txt for 82 and 85.
+plan 18
 load_sim
 load_driver
 U="temperature = 25
@@ -54,12 +55,12 @@ accel_near "compensated readings after reload + restore: 0 0 1 g" "$(accel_mean 
 $CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt --record /tmp/rec-sim > /tmp/ft-sim.log 2>&1
 check "the simulator's record says so (source = simulator)" grep -qx "source = simulator" /tmp/rec-sim
 set_cal $CAL0
-if $CALIBD restore --backend iio --record /tmp/rec-sim > /tmp/r2.log 2>&1; then
-	nok "restore refuses the simulator's record"
-else
-	ok "restore refuses the simulator's record"
-fi
+$CALIBD restore --backend iio --record /tmp/rec-sim > /tmp/r2.log 2>&1
+rc=$?
 sed 's/^/# /' /tmp/r2.log
+# refused for being the simulator's: exit status 1 and the reason said
+check "restore refuses the simulator's record, saying why" \
+	sh -c "[ $rc -eq 1 ] && grep -q 'was written by a factory test on the simulator (source = simulator), not on this chip' /tmp/r2.log"
 eq "nothing applied from the simulator's record" "$(cal_get)" "$CAL0"
 
 # A record of another chip (ET2 differs): made on that chip, refused on this one
@@ -72,10 +73,10 @@ check "factory test of another chip" \
 dev_stale
 printf '%s\n' "$U" > $SIM/unit
 wait_dev 5
-if $CALIBD restore --backend iio --record /tmp/rec2 > /tmp/r2.log 2>&1; then
-	nok "restore refuses another chip's record"
-else
-	ok "restore refuses another chip's record"
-fi
+$CALIBD restore --backend iio --record /tmp/rec2 > /tmp/r2.log 2>&1
+rc=$?
 sed 's/^/# /' /tmp/r2.log
+# refused for being another chip's (its EEPROM's fingerprint): exit 1, said
+check "restore refuses another chip's record, saying why" \
+	sh -c "[ $rc -eq 1 ] && grep -q '/tmp/rec2 belongs to chip [0-9a-f]*, .* is chip [0-9a-f]*; nothing applied' /tmp/r2.log"
 eq "nothing applied from another chip's record" "$(cal_get)" "$CAL0"

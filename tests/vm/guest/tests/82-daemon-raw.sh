@@ -10,6 +10,7 @@
 # again, restore --backend iio gives the calibration the record implies
 # (caliboffset, calibtemp) and compensated readings of 0, 0 and 1 g.
 # Leaves the driver bound.
+plan 85
 CALIBD=/bin/as9888-calibd
 RD=/tmp/raw
 REC=$RD/rec
@@ -220,6 +221,9 @@ if [ -f /tmp/rec ]; then
 	cal_near "the iio backend's record (80-daemon.sh) within 1 chip LSB of this one" \
 		"$(cal_get)" "$CAL" 1
 	$CALIBD restore --backend iio --record $REC > /dev/null 2>&1
+else
+	plan_more -1	# (run alone: 80-daemon left no record to compare)
+	diag "no /tmp/rec of 80-daemon.sh (not run): no comparison with it"
 fi
 
 # what matters: the compensated readings (16 reads, noise 0.5 chip LSB)

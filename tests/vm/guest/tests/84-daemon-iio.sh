@@ -6,6 +6,7 @@
 # check,
 # recalibrate after a "shock" and rollback, also as daemon requests; every
 # fault fails at its step; the device's attributes are left as found.
+plan 51
 CALIBD=/bin/as9888-calibd
 U84="temperature = 25
 offset = 40 -25 60
@@ -163,6 +164,7 @@ for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
 	# nak: every 50th transfer fails, wherever it falls
 	[ "$2" = any ] || eq "$1: the test ends at $2" "$GOT" "$2"
 	if [ "$GOT" = pass ]; then
+		check "$1: passed, the record written" test -s /tmp/iio/frec
 		eq "$1: passed, attributes as found but for the new calibration" \
 			"$(state | grep -v -e calib)" \
 			"$(echo "$S0" | grep -v -e calib)"

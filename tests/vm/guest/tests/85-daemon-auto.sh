@@ -5,6 +5,7 @@
 # the record implies (caliboffset, calibtemp) and reads 0, 0 and 1 g;
 # requests work; SIGTERM stops it. Needs /tmp/rec and the unit of
 # 80-daemon.sh.
+plan 9
 CALIBD=/bin/as9888-calibd
 SOCK=/tmp/calibd.sock
 
