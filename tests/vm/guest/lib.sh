@@ -47,7 +47,7 @@ near() {
 }
 
 load_driver() {
-	for m in as9888_calib as9888_core as9888_i2c; do
+	for m in as9888_core as9888_i2c; do
 		grep -q "^$m " /proc/modules || insmod $MODDIR/$m.ko || return 1
 	done
 }
