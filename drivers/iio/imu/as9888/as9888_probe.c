@@ -454,6 +454,13 @@ EXPORT_SYMBOL_NS_GPL(as9888_core_probe, "IIO_AS9888");
  * middle: after this, the registers are served from the cache (the trim,
  * the DAC and the interrupt set-up, rewritten on resume) and every other
  * access fails without reaching the bus.
+ *
+ * When the supplies cannot be switched off, the chip stays powered, but
+ * RSTN was pulsed (see as9888_power_cut()) and its registers are at their
+ * reset values: they are restored and the device stays active. That is
+ * -EAGAIN for the PM core: the device is fine, suspend may be tried again.
+ * Any other error would be kept as the device's runtime PM error, and every
+ * later runtime resume would fail until the driver is bound again.
  */
 static int as9888_runtime_suspend(struct device *dev)
 {
@@ -466,13 +473,19 @@ static int as9888_runtime_suspend(struct device *dev)
 	regcache_mark_dirty(chip->regmap);
 
 	ret = as9888_power_cut(chip);
+	if (!ret)
+		return 0;
+
+	regcache_cache_only(chip->regmap, false);
+	as9888_wait_pd(chip);
+	ret = regcache_sync(chip->regmap);
 	if (ret) {
-		regcache_cache_only(chip->regmap, false);
-		/* RSTN was pulsed: the chip lost its registers */
-		regcache_sync(chip->regmap);
+		dev_err(dev, "cannot restore the registers after a failed power-off: %d\n",
+			ret);
+		return ret;
 	}
 
-	return ret;
+	return -EAGAIN;
 }
 
 /*
@@ -528,18 +541,25 @@ static int as9888_suspend(struct device *dev)
 	return ret;
 }
 
+/*
+ * Measurements are allowed again even when the power-up failed: the device
+ * is then left runtime suspended (see pm_runtime_force_resume()), so the
+ * next runtime resume, on the next access, tries again. A data-ready
+ * trigger that ran cannot start on the unpowered chip; its buffer gets
+ * samples again once it is disabled and enabled.
+ */
 static int as9888_resume(struct device *dev)
 {
 	struct as9888_chip *chip = dev_get_drvdata(dev);
-	int ret;
+	int ret, ret_trig;
 
 	ret = pm_runtime_force_resume(dev);
 	if (chip->irq)
 		enable_irq(chip->irq);
-	if (ret)
-		return ret;
 
-	return as9888_trig_resume(chip);
+	ret_trig = as9888_trig_resume(chip);
+
+	return ret ?: ret_trig;
 }
 
 EXPORT_NS_GPL_DEV_PM_OPS(as9888_pm_ops, IIO_AS9888) = {
