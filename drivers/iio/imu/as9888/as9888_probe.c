@@ -321,9 +321,10 @@ static const struct as9888_int_pin as9888_int_pins[] = {
  * The data-ready interrupt. Without interrupt-names, the device's (first)
  * interrupt is INT1, and no interrupt means ST1 is polled. With
  * interrupt-names, INT1 is taken when it is named, else INT2 (a board that
- * wires INT2 only, as bmi323 does); a named interrupt that cannot be got
- * is a firmware error that fails probe, never a silent fall back to
- * polling.
+ * wires INT2 only, as bmi323 and kx022a allow); a named interrupt that
+ * cannot be got is a firmware error that fails probe, never a silent fall
+ * back to polling. fwnode_irq_get_byname() returns -ENODATA for a name
+ * that interrupt-names does not list.
  */
 static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
 {
@@ -331,7 +332,7 @@ static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
 	struct fwnode_handle *fwnode = dev_fwnode(dev);
 	const struct as9888_int_pin *pin;
 	unsigned int i;
-	int index, irq;
+	int irq;
 
 	chip->int_pin = &as9888_int_pins[0];
 	if (!fwnode || !fwnode_property_present(fwnode, "interrupt-names"))
@@ -339,16 +340,12 @@ static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
 
 	for (i = 0; i < ARRAY_SIZE(as9888_int_pins); i++) {
 		pin = &as9888_int_pins[i];
-		index = fwnode_property_match_string(fwnode, "interrupt-names",
-						     pin->name);
-		if (index < 0)
+		irq = fwnode_irq_get_byname(fwnode, pin->name);
+		if (irq == -ENODATA)
 			continue;
-
-		irq = fwnode_irq_get(fwnode, index);
 		if (irq < 0)
-			return dev_err_probe(dev, irq,
-					     "cannot get interrupt %s (interrupt-names entry %d)\n",
-					     pin->name, index);
+			return dev_err_probe(dev, irq, "cannot get interrupt %s\n",
+					     pin->name);
 
 		chip->int_pin = pin;
 		return irq;
