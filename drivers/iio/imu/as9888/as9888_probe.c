@@ -266,9 +266,8 @@ static int as9888_chip_init(struct as9888_chip *chip)
 }
 
 /*
- * The EEPROM as an NVMEM device "as9888-eeprom<N>", N the number of the
- * accelerometer's IIO device; reads are served from the copy taken at
- * probe.
+ * The EEPROM as a read-only NVMEM device, a child of the bus device; reads
+ * are served from the copy taken at probe
  */
 static int as9888_nvmem_read(void *priv, unsigned int offset, void *val,
 			     size_t bytes)
@@ -288,7 +287,7 @@ static int as9888_nvmem_register(struct as9888_chip *chip)
 	struct nvmem_config config = {
 		.dev = chip->dev,
 		.name = AS9888_DRV_NAME "-eeprom",
-		.id = iio_device_id(chip->iio[AS9888_ACCEL]),
+		.id = NVMEM_DEVID_AUTO,
 		.owner = THIS_MODULE,
 		.type = NVMEM_TYPE_EEPROM,
 		.read_only = true,
