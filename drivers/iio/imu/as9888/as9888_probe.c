@@ -57,7 +57,7 @@ static const char * const as9888_supply_names[AS9888_SUPPLIES] = {
 	"vdd", "vid",
 };
 
-/* Power, reset and the factory trim: step 1 of the application note */
+/* Power, reset and the factory trim */
 
 /*
  * Supplies on, then RSTN released: RSTN is held low while the supplies are
@@ -160,7 +160,7 @@ static int as9888_power_init(struct as9888_chip *chip)
 	return devm_add_action_or_reset(dev, as9888_power_off, chip);
 }
 
-/* Steps 1-5..1-29: the whole EEPROM in one burst in EEPROM access mode */
+/* The whole EEPROM in one burst, in EEPROM access mode */
 static int as9888_read_eeprom(struct as9888_chip *chip,
 			      u8 raw[AS9888_EEPROM_LEN])
 {
@@ -211,7 +211,10 @@ static int as9888_decode_eeprom(struct as9888_chip *chip,
 	return 0;
 }
 
-/* Steps 1-30..1-39 and the read-back check of D10 */
+/*
+ * The trim registers from the EEPROM, in one write checked by an uncached
+ * read-back (as9888_write_trim())
+ */
 static int as9888_load_trim(struct as9888_chip *chip)
 {
 	const struct as9888_eeprom *ee = &chip->ee;
@@ -515,8 +518,9 @@ static int as9888_runtime_resume(struct device *dev)
  * System sleep: as9888_trig_suspend() stops a running data-ready trigger
  * and makes every measurement fail with -EBUSY until resume, so a buffer
  * on another trigger (whose handler may still run until the interrupts
- * are suspended) touches no register; INT1 is disabled, which also waits
- * for a handler in flight; then the supplies go off.
+ * are suspended) touches no register; the data-ready interrupt is
+ * disabled, which also waits for a handler in flight; then the supplies
+ * go off.
  */
 static int as9888_suspend(struct device *dev)
 {
