@@ -609,13 +609,13 @@ const char *as9888_ee_warning_str(u32 warning_bit)
 {
 	switch (warning_bit) {
 	case AS9888_EE_WARN_DELTA_T:
-		return "ET1/ET2 invalid or span not 10..80 degC: 35 degC used (D4)";
+		return "ET1/ET2 invalid or span not 10..80 degC: 35 degC used";
 	case AS9888_EE_WARN_KOTE_X:
-		return "X offset temperature slope beyond 10.2 LSB/degC (D9)";
+		return "X offset temperature slope beyond 10.2 LSB/degC";
 	case AS9888_EE_WARN_KOTE_Y:
-		return "Y offset temperature slope beyond 10.2 LSB/degC (D9)";
+		return "Y offset temperature slope beyond 10.2 LSB/degC";
 	case AS9888_EE_WARN_KOTE_Z:
-		return "Z offset temperature slope beyond 10.2 LSB/degC (D9)";
+		return "Z offset temperature slope beyond 10.2 LSB/degC";
 	default:
 		return "unknown EEPROM warning";
 	}
