@@ -545,21 +545,24 @@ static int as9888_suspend(struct device *dev)
  * Measurements are allowed again even when the power-up failed: the device
  * is then left runtime suspended (see pm_runtime_force_resume()), so the
  * next runtime resume, on the next access, tries again. A data-ready
- * trigger that ran cannot start on the unpowered chip; its buffer gets
+ * trigger that ran is not restarted on the unpowered chip; its buffer gets
  * samples again once it is disabled and enabled.
  */
 static int as9888_resume(struct device *dev)
 {
 	struct as9888_chip *chip = dev_get_drvdata(dev);
-	int ret, ret_trig;
+	int ret;
 
 	ret = pm_runtime_force_resume(dev);
 	if (chip->irq)
 		enable_irq(chip->irq);
+	if (ret) {
+		scoped_guard(mutex, &chip->lock)
+			chip->suspended = false;
+		return ret;
+	}
 
-	ret_trig = as9888_trig_resume(chip);
-
-	return ret ?: ret_trig;
+	return as9888_trig_resume(chip);
 }
 
 EXPORT_NS_GPL_DEV_PM_OPS(as9888_pm_ops, IIO_AS9888) = {

@@ -90,6 +90,41 @@ if [ -w /sys/power/pm_test ] && grep -qw freeze /sys/power/state; then
 	check "failed power-up: the magnetometer measures too" \
 		sh -c "cat $MDEV/in_magn_x_raw > /dev/null"
 	echo auto > $PF/control
+
+	# A buffer on the data-ready trigger over a failed power-up: the
+	# trigger is not restarted on the unpowered chip (no sample whose
+	# edge never comes, no watchdog warning); disabled and enabled
+	# again, the buffer powers the chip up and gets samples.
+	T=$(dr_trig)
+	echo 100 > $DEV/sampling_frequency
+	SE=$(se_dir $DEV)
+	for c in in_accel_x in_accel_y in_accel_z in_timestamp; do
+		echo 1 > $SE/${c}_en
+	done
+	echo "$T" > $DEV/trigger/current_trigger
+	echo 1024 > $DEV/buffer/length
+	check "buffer over a failed power-up: enabled on $T" \
+		sh -c "echo 1 > $DEV/buffer/enable"
+	echo devices > /sys/power/pm_test
+	_n0=$(dmesg | wc -l)
+	echo 1 > $SIM/fail_supply_on
+	check "buffer over a failed power-up: system sleep and resume" \
+		sh -c "echo freeze > /sys/power/state"
+	echo none > /sys/power/pm_test
+	eq "buffer over a failed power-up: resume tried to switch the supply on" \
+		"$(cat $SIM/fail_supply_on)" 0
+	sleep 2
+	echo 0 > $DEV/buffer/enable
+	timeout 5 cat /dev/iio:device${DEV##*iio:device} > /dev/null
+	echo "" > $DEV/trigger/current_trigger
+	check_not "buffer over a failed power-up: no watchdog restart on the unpowered chip" \
+		sh -c "dmesg | tail -n +$((_n0 + 1)) | grep -q 'edge .* after a sample started'"
+	if capture "$T" 1 /tmp/pf.bin; then
+		check "buffer enabled again: at least 50 samples in 1 s ($(samples /tmp/pf.bin))" \
+			test "$(samples /tmp/pf.bin)" -ge 50
+	else
+		nok "buffer enabled again after the failed power-up"
+	fi
 else
 	nok "system sleep: /sys/power/pm_test and freeze available (CONFIG_PM_DEBUG)"
 fi
