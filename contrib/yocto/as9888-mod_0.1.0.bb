@@ -2,7 +2,7 @@
 #
 # The AS9888 IIO drivers as out-of-tree modules, built through the
 # repository's top-level Kbuild exactly as dkms.conf builds them
-# (as9888_calib, as9888_core, as9888_i2c, as9888_spi; no KUnit module).
+# (as9888_core, as9888_i2c, as9888_spi; no KUnit module).
 # Prefer the driver in the kernel tree (drivers/iio/imu/as9888) when the
 # BSP carries it.
 #

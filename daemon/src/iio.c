@@ -176,17 +176,33 @@ int iio_find_magn(const char *accel_dir, char *out, size_t size,
 int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 {
 	const char *base = strrchr(dir, '/');
-	char path[IIO_PATH_MAX];
+	char bus[IIO_PATH_MAX], path[IIO_PATH_MAX];
+	struct dirent *de;
 	ssize_t n;
+	DIR *d;
 	int fd;
 
 	if (!base || !is_iio_device(base + 1))
 		return -EINVAL;
-	snprintf(path, sizeof(path), "%s/../%s-eeprom%s/nvmem", dir,
-		 IIO_CHIP_NAME, base + 1 + strlen(IIO_DEVICE_PREFIX));
-	fd = open(path, O_RDONLY | O_CLOEXEC);
-	if (fd < 0)
+	/* The chip's only NVMEM provider, numbered by the NVMEM core */
+	snprintf(bus, sizeof(bus), "%s/..", dir);
+	d = opendir(bus);
+	if (!d)
 		return -errno;
+	fd = -ENOENT;
+	while ((de = readdir(d))) {
+		if (strncmp(de->d_name, IIO_EEPROM_PREFIX,
+			    strlen(IIO_EEPROM_PREFIX)))
+			continue;
+		snprintf(path, sizeof(path), "%s/%s/nvmem", bus, de->d_name);
+		fd = open(path, O_RDONLY | O_CLOEXEC);
+		if (fd < 0)
+			fd = -errno;
+		break;
+	}
+	closedir(d);
+	if (fd < 0)
+		return fd;
 	n = read(fd, eeprom, AS9888_EEPROM_LEN);
 	close(fd);
 	if (n < 0)

@@ -31,10 +31,14 @@
 #define IIO_MAGN_NAME	"as9888-magn"
 /*
  * The chip's name in what is named per chip after the accelerometer
- * device's number N: the trigger "as9888-dev<N>" and the NVMEM provider
- * "as9888-eeprom<N>"
+ * device's number N: the trigger "as9888-dev<N>"
  */
 #define IIO_CHIP_NAME	"as9888"
+/*
+ * The chip's NVMEM provider, "as9888-eeprom<M>" below the bus device (M
+ * numbered by the NVMEM core)
+ */
+#define IIO_EEPROM_PREFIX	"as9888-eeprom"
 #define IIO_DEVICE_PREFIX	"iio:device"
 #define IIO_TRIGGER_PREFIX	"trigger"
 
@@ -86,7 +90,7 @@ int iio_read_debugfs(const char *dir, const char *name, char *buf,
 
 /*
  * The EEPROM of the device at @dir through the driver's NVMEM provider
- * "as9888-eeprom<N>", a sibling of iio:device<N> below the bus device.
+ * (IIO_EEPROM_PREFIX), a sibling of the IIO device below the bus device.
  */
 int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN]);
 

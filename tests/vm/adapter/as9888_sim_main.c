@@ -54,6 +54,10 @@
  *		it (INT1 goes nowhere); read: the wiring in use
  *  fail_next	write N: the next N bus transfers fail (I2C NAK, SPI error)
  *		without reaching the chip; read: how many are left
+ *  fail_supply_on, fail_supply_off
+ *		write N: the next N times the supply is to be switched on
+ *		(off), the regulator fails with -EIO and the chip keeps its
+ *		power state; read: how many are left
  * Live environment, without re-creating the chip or the device (registers,
  * a running measurement and the counters stay; every measurement that
  * completes after the write uses the new value; it also holds for a chip
@@ -169,6 +173,8 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @irqs_dropped: INT1 edges not delivered (drop_int1)
  * @drop_int1:	INT1 edges still to drop
  * @fail_next:	bus transfers still to fail
+ * @fail_supply_on: switch-ons of the supply still to fail
+ * @fail_supply_off: switch-offs of the supply still to fail
  * @timer:	wakes up at the model's next event
  * @cfg_lock:	serialises unit/present changes
  * @unit:	the unit in use
@@ -205,6 +211,8 @@ struct as9888_sim {
 	u64 irqs_dropped;
 	u32 drop_int1;
 	u32 fail_next;
+	u32 fail_supply_on;
+	u32 fail_supply_off;
 	struct hrtimer timer;
 
 	struct mutex cfg_lock;		/* see @cfg_lock above */
@@ -511,9 +519,15 @@ static const struct irq_domain_ops as9888_sim_lvl_ops = {
 static int as9888_sim_supply_set(struct regulator_dev *rdev, bool on)
 {
 	struct as9888_sim *s = rdev_get_drvdata(rdev);
+	u32 *fail = on ? &s->fail_supply_on : &s->fail_supply_off;
 	unsigned long flags;
 
 	spin_lock_irqsave(&s->lock, flags);
+	if (*fail) {
+		(*fail)--;
+		spin_unlock_irqrestore(&s->lock, flags);
+		return -EIO;
+	}
 	as9888_model_set_power(&s->model, ktime_get_ns(), on);
 	s->pin[0] = false;
 	s->pin[1] = false;
@@ -1366,7 +1380,7 @@ static const struct file_operations as9888_sim_wiring_fops = {
 	.llseek = default_llseek,
 };
 
-/* drop_int1 and fail_next: a count of events to spoil, under sim->lock */
+/* drop_int1, fail_next, fail_supply_*: events to spoil, under sim->lock */
 static int as9888_sim_count_get(void *data, u64 *val)
 {
 	u32 *count = data;
@@ -1596,6 +1610,10 @@ static int __init as9888_sim_init(void)
 				   &as9888_sim_count_fops);
 	debugfs_create_file_unsafe("fail_next", 0600, s->dir, &s->fail_next,
 				   &as9888_sim_count_fops);
+	debugfs_create_file_unsafe("fail_supply_on", 0600, s->dir,
+				   &s->fail_supply_on, &as9888_sim_count_fops);
+	debugfs_create_file_unsafe("fail_supply_off", 0600, s->dir,
+				   &s->fail_supply_off, &as9888_sim_count_fops);
 	for (i = 0; i < AS9888_SIM_NKNOBS; i++) {
 		s->knobs[i].s = s;
 		s->knobs[i].id = i;

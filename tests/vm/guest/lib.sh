@@ -90,7 +90,7 @@ kmsg_since() {
 }
 
 load_driver() {
-	for m in as9888_calib as9888_core as9888_i2c; do
+	for m in as9888_core as9888_i2c; do
 		grep -q "^$m " /proc/modules || insmod $MODDIR/$m.ko || return 1
 	done
 }

@@ -16,7 +16,6 @@
 #include <linux/math.h>
 #include <linux/math64.h>
 #include <linux/minmax.h>
-#include <linux/module.h>
 #include <linux/types.h>
 
 #include <kunit/visibility.h>
@@ -82,7 +81,7 @@ s64 as9888_div_round_s64(s64 num, s64 den)
 
 	return q;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_div_round_s64, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_div_round_s64);
 
 static bool as9888_t_valid(s32 t_mdegc)
 {
@@ -101,21 +100,21 @@ s32 as9888_tmps_to_mdegc(u8 tmps)
 {
 	return (AS9888_TMPS_ZERO_DEGC - (s32)tmps) * AS9888_MDEGC_PER_TMPS;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_tmps_to_mdegc, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_tmps_to_mdegc);
 
 /* Magnetometer sensitivity adjustment: H * (EHC + 128) / 256, in Q8 */
 s32 as9888_mag_adjust_q8(s16 h, u8 ehc)
 {
 	return (s32)h * ((s32)ehc + AS9888_EHC_OFFSET);
 }
-EXPORT_SYMBOL_NS_GPL(as9888_mag_adjust_q8, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_mag_adjust_q8);
 
 /* Steps 2-7..2-12: -4096 and 4095 (or anything beyond) mean overflow */
 bool as9888_mag_overflow(s16 h)
 {
 	return h <= AS9888_MAG_MIN || h >= AS9888_MAG_MAX;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_mag_overflow, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_mag_overflow);
 
 /**
  * as9888_selftest_window_ok() - self-test window of steps 2-17..2-22
@@ -163,7 +162,7 @@ bool as9888_selftest_ok(int axis, s16 h, u8 ehc)
 	return !as9888_mag_overflow(h) &&
 	       as9888_selftest_window_ok(axis, as9888_mag_adjust_q8(h, ehc));
 }
-EXPORT_SYMBOL_NS_GPL(as9888_selftest_ok, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_selftest_ok);
 
 static bool as9888_trim_valid(const struct as9888_axis_trim *trim)
 {
@@ -256,7 +255,7 @@ int as9888_dac2lin(u8 ga, u8 da)
 
 	return ga & AS9888_GA_POLARITY_MSK ? -lin : lin;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_dac2lin, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_dac2lin);
 
 /**
  * as9888_lin2dac() - signed linear code to DAC register value (6.6)
@@ -273,7 +272,7 @@ u8 as9888_lin2dac(u8 ga, int lin)
 
 	return lin >= 0 ? AS9888_DAC_ZERO + lin : -lin;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_lin2dac, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_lin2dac);
 
 VISIBLE_IF_KUNIT bool as9888_dac_valid(u8 da)
 {
@@ -367,7 +366,7 @@ int as9888_accel_correction(const struct as9888_eeprom *ee,
 
 	return as9888_sensitivity_q16(trim, ee->t_rt_mdegc, t_mdegc, st_q16);
 }
-EXPORT_SYMBOL_NS_GPL(as9888_accel_correction, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_accel_correction);
 
 /**
  * as9888_accel_compensate() - a raw reading on the constant output scale
@@ -398,7 +397,7 @@ int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out)
 	return as9888_in_range(a, AS9888_ACC_OUT_MIN, AS9888_ACC_OUT_MAX) ?
 	       0 : -ERANGE;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_accel_compensate, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_accel_compensate);
 
 /**
  * as9888_q16_to_micro() - a Q16 value in millionths, rounded to nearest
@@ -413,7 +412,7 @@ s64 as9888_q16_to_micro(s32 q16)
 {
 	return as9888_div_round_s64((s64)q16 * AS9888_MICRO, AS9888_Q16_ONE);
 }
-EXPORT_SYMBOL_NS_GPL(as9888_q16_to_micro, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_q16_to_micro);
 
 /**
  * as9888_micro_to_q16() - millionths to Q16, rounded to nearest
@@ -439,7 +438,7 @@ int as9888_micro_to_q16(s64 micro, s32 *q16)
 
 	return 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_micro_to_q16, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_micro_to_q16);
 
 static void as9888_decode_axis(const u8 *raw, int axis,
 			       struct as9888_axis_trim *trim)
@@ -577,7 +576,7 @@ int as9888_eeprom_decode(const u8 raw[AS9888_EEPROM_LEN],
 
 	return ee->errors ? -EINVAL : 0;
 }
-EXPORT_SYMBOL_NS_GPL(as9888_eeprom_decode, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_eeprom_decode);
 
 /* as9888_ee_error_str() - what one enum as9888_ee_error bit means */
 const char *as9888_ee_error_str(u32 error_bit)
@@ -603,25 +602,21 @@ const char *as9888_ee_error_str(u32 error_bit)
 		return "unknown EEPROM error";
 	}
 }
-EXPORT_SYMBOL_NS_GPL(as9888_ee_error_str, "IIO_AS9888");
+EXPORT_SYMBOL_IF_KUNIT(as9888_ee_error_str);
 
 /* as9888_ee_warning_str() - what one enum as9888_ee_warning bit means */
 const char *as9888_ee_warning_str(u32 warning_bit)
 {
 	switch (warning_bit) {
 	case AS9888_EE_WARN_DELTA_T:
-		return "ET1/ET2 invalid or span not 10..80 degC: 35 degC used (D4)";
+		return "ET1/ET2 invalid or span not 10..80 degC: 35 degC used";
 	case AS9888_EE_WARN_KOTE_X:
-		return "X offset temperature slope beyond 10.2 LSB/degC (D9)";
+		return "X offset temperature slope beyond 10.2 LSB/degC";
 	case AS9888_EE_WARN_KOTE_Y:
-		return "Y offset temperature slope beyond 10.2 LSB/degC (D9)";
+		return "Y offset temperature slope beyond 10.2 LSB/degC";
 	case AS9888_EE_WARN_KOTE_Z:
-		return "Z offset temperature slope beyond 10.2 LSB/degC (D9)";
+		return "Z offset temperature slope beyond 10.2 LSB/degC";
 	default:
 		return "unknown EEPROM warning";
 	}
 }
-EXPORT_SYMBOL_NS_GPL(as9888_ee_warning_str, "IIO_AS9888");
-
-MODULE_DESCRIPTION("AS9888 calibration arithmetic");
-MODULE_LICENSE("GPL");

@@ -736,4 +736,3 @@ kunit_test_suite(as9888_calib_test_suite);
 MODULE_DESCRIPTION("KUnit tests for the AS9888 calibration arithmetic");
 MODULE_LICENSE("GPL");
 MODULE_IMPORT_NS("EXPORTED_FOR_KUNIT_TESTING");
-MODULE_IMPORT_NS("IIO_AS9888");

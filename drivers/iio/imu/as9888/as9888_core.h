@@ -4,9 +4,8 @@
  * driver (chip access, probe and power management, the accelerometer and
  * magnetometer IIO devices, the data-ready trigger).
  *
- * The register map and the timing of the datasheet live in as9888_regs.h,
- * which the userspace daemon and the chip model share; this header adds
- * what only the kernel driver needs.
+ * The register map and the timing of the datasheet live in as9888_regs.h;
+ * this header adds what only the core driver needs.
  */
 #ifndef AS9888_CORE_H
 #define AS9888_CORE_H
@@ -91,7 +90,7 @@ enum as9888_sensor_id {
  * @regmap:	register map; the trim and configuration registers are cached
  *		and rewritten by regcache_sync() after a power cycle
  * @iio:	the accelerometer and the magnetometer IIO devices
- * @trig:	data-ready trigger, NULL when INT1 is not wired
+ * @trig:	data-ready trigger, NULL without a data-ready interrupt
  * @supplies:	vdd and vid
  * @reset:	RSTN, or NULL; asserted (low) whenever the supplies are off, so
  *		that the pin never feeds a chip without power
@@ -99,14 +98,16 @@ enum as9888_sensor_id {
  * @ee:		the decoded factory EEPROM, read once at probe
  * @irq:	the data-ready interrupt (INT1, or INT2 when only INT2 is
  *		wired), or 0 to poll ST1
- * @int_pin:	the pin @irq is wired to
+ * @int_pin:	the pin @irq is wired to, INT1 or INT2; "INT1" below stands
+ *		for whichever it is
  * @int_lock:	makes the start of a measurement (its MS write, which
  *		deasserts the pin, and @meas_seq) atomic with respect to the
  *		deassertion of a level-triggered pin by reading INTxST; taken
  *		inside @lock, and alone by the interrupt thread
  * @meas_seq:	measurements started, under @int_lock
  * @irq_seq:	@meas_seq when the interrupt last fired
- * @drdy:	completed by INT1 for measurements waited for synchronously
+ * @drdy:	completed by the data-ready interrupt for measurements waited
+ *		for synchronously
  * @trig_wd:	the data-ready trigger's watchdog: armed with each sample it
  *		starts, it restarts a sample whose INT1 edge never came and
  *		retries a start that failed, so that the trigger never stalls
@@ -219,7 +220,8 @@ struct as9888_sensor {
  * @priv_size:	size of its IIO private data, which starts with a
  *		struct as9888_sensor
  * @info:	its IIO info
- * @channels:	its channels, with sampling_frequency (dropped without INT1)
+ * @channels:	its channels, with sampling_frequency (dropped without a
+ *		data-ready interrupt)
  * @num_channels: how many
  * @men:	its own measurements include the magnetometer
  * @push:	push the device's channels of a checked sample to its buffer,

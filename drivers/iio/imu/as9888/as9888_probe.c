@@ -57,7 +57,7 @@ static const char * const as9888_supply_names[AS9888_SUPPLIES] = {
 	"vdd", "vid",
 };
 
-/* Power, reset and the factory trim: step 1 of the application note */
+/* Power, reset and the factory trim */
 
 /*
  * Supplies on, then RSTN released: RSTN is held low while the supplies are
@@ -160,7 +160,7 @@ static int as9888_power_init(struct as9888_chip *chip)
 	return devm_add_action_or_reset(dev, as9888_power_off, chip);
 }
 
-/* Steps 1-5..1-29: the whole EEPROM in one burst in EEPROM access mode */
+/* The whole EEPROM in one burst, in EEPROM access mode */
 static int as9888_read_eeprom(struct as9888_chip *chip,
 			      u8 raw[AS9888_EEPROM_LEN])
 {
@@ -211,7 +211,10 @@ static int as9888_decode_eeprom(struct as9888_chip *chip,
 	return 0;
 }
 
-/* Steps 1-30..1-39 and the read-back check of D10 */
+/*
+ * The trim registers from the EEPROM, in one write checked by an uncached
+ * read-back (as9888_write_trim())
+ */
 static int as9888_load_trim(struct as9888_chip *chip)
 {
 	const struct as9888_eeprom *ee = &chip->ee;
@@ -266,9 +269,8 @@ static int as9888_chip_init(struct as9888_chip *chip)
 }
 
 /*
- * The EEPROM as an NVMEM device "as9888-eeprom<N>", N the number of the
- * accelerometer's IIO device; reads are served from the copy taken at
- * probe.
+ * The EEPROM as a read-only NVMEM device, a child of the bus device; reads
+ * are served from the copy taken at probe
  */
 static int as9888_nvmem_read(void *priv, unsigned int offset, void *val,
 			     size_t bytes)
@@ -288,7 +290,7 @@ static int as9888_nvmem_register(struct as9888_chip *chip)
 	struct nvmem_config config = {
 		.dev = chip->dev,
 		.name = AS9888_DRV_NAME "-eeprom",
-		.id = iio_device_id(chip->iio[AS9888_ACCEL]),
+		.id = NVMEM_DEVID_AUTO,
 		.owner = THIS_MODULE,
 		.type = NVMEM_TYPE_EEPROM,
 		.read_only = true,
@@ -321,9 +323,10 @@ static const struct as9888_int_pin as9888_int_pins[] = {
  * The data-ready interrupt. Without interrupt-names, the device's (first)
  * interrupt is INT1, and no interrupt means ST1 is polled. With
  * interrupt-names, INT1 is taken when it is named, else INT2 (a board that
- * wires INT2 only, as bmi323 does); a named interrupt that cannot be got
- * is a firmware error that fails probe, never a silent fall back to
- * polling.
+ * wires INT2 only, as bmi323 and kx022a allow); a named interrupt that
+ * cannot be got is a firmware error that fails probe, never a silent fall
+ * back to polling. fwnode_irq_get_byname() returns -ENODATA for a name
+ * that interrupt-names does not list.
  */
 static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
 {
@@ -331,7 +334,7 @@ static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
 	struct fwnode_handle *fwnode = dev_fwnode(dev);
 	const struct as9888_int_pin *pin;
 	unsigned int i;
-	int index, irq;
+	int irq;
 
 	chip->int_pin = &as9888_int_pins[0];
 	if (!fwnode || !fwnode_property_present(fwnode, "interrupt-names"))
@@ -339,16 +342,12 @@ static int as9888_get_irq(struct as9888_chip *chip, int bus_irq)
 
 	for (i = 0; i < ARRAY_SIZE(as9888_int_pins); i++) {
 		pin = &as9888_int_pins[i];
-		index = fwnode_property_match_string(fwnode, "interrupt-names",
-						     pin->name);
-		if (index < 0)
+		irq = fwnode_irq_get_byname(fwnode, pin->name);
+		if (irq == -ENODATA)
 			continue;
-
-		irq = fwnode_irq_get(fwnode, index);
 		if (irq < 0)
-			return dev_err_probe(dev, irq,
-					     "cannot get interrupt %s (interrupt-names entry %d)\n",
-					     pin->name, index);
+			return dev_err_probe(dev, irq, "cannot get interrupt %s\n",
+					     pin->name);
 
 		chip->int_pin = pin;
 		return irq;
@@ -454,6 +453,13 @@ EXPORT_SYMBOL_NS_GPL(as9888_core_probe, "IIO_AS9888");
  * middle: after this, the registers are served from the cache (the trim,
  * the DAC and the interrupt set-up, rewritten on resume) and every other
  * access fails without reaching the bus.
+ *
+ * When the supplies cannot be switched off, the chip stays powered, but
+ * RSTN was pulsed (see as9888_power_cut()) and its registers are at their
+ * reset values: they are restored and the device stays active. That is
+ * -EAGAIN for the PM core: the device is fine, suspend may be tried again.
+ * Any other error would be kept as the device's runtime PM error, and every
+ * later runtime resume would fail until the driver is bound again.
  */
 static int as9888_runtime_suspend(struct device *dev)
 {
@@ -466,13 +472,19 @@ static int as9888_runtime_suspend(struct device *dev)
 	regcache_mark_dirty(chip->regmap);
 
 	ret = as9888_power_cut(chip);
+	if (!ret)
+		return 0;
+
+	regcache_cache_only(chip->regmap, false);
+	as9888_wait_pd(chip);
+	ret = regcache_sync(chip->regmap);
 	if (ret) {
-		regcache_cache_only(chip->regmap, false);
-		/* RSTN was pulsed: the chip lost its registers */
-		regcache_sync(chip->regmap);
+		dev_err(dev, "cannot restore the registers after a failed power-off: %d\n",
+			ret);
+		return ret;
 	}
 
-	return ret;
+	return -EAGAIN;
 }
 
 /*
@@ -506,8 +518,9 @@ static int as9888_runtime_resume(struct device *dev)
  * System sleep: as9888_trig_suspend() stops a running data-ready trigger
  * and makes every measurement fail with -EBUSY until resume, so a buffer
  * on another trigger (whose handler may still run until the interrupts
- * are suspended) touches no register; INT1 is disabled, which also waits
- * for a handler in flight; then the supplies go off.
+ * are suspended) touches no register; the data-ready interrupt is
+ * disabled, which also waits for a handler in flight; then the supplies
+ * go off.
  */
 static int as9888_suspend(struct device *dev)
 {
@@ -528,6 +541,13 @@ static int as9888_suspend(struct device *dev)
 	return ret;
 }
 
+/*
+ * Measurements are allowed again even when the power-up failed: the device
+ * is then left runtime suspended (see pm_runtime_force_resume()), so the
+ * next runtime resume, on the next access, tries again. A data-ready
+ * trigger that ran is not restarted on the unpowered chip; its buffer gets
+ * samples again once it is disabled and enabled.
+ */
 static int as9888_resume(struct device *dev)
 {
 	struct as9888_chip *chip = dev_get_drvdata(dev);
@@ -536,8 +556,11 @@ static int as9888_resume(struct device *dev)
 	ret = pm_runtime_force_resume(dev);
 	if (chip->irq)
 		enable_irq(chip->irq);
-	if (ret)
+	if (ret) {
+		scoped_guard(mutex, &chip->lock)
+			chip->suspended = false;
 		return ret;
+	}
 
 	return as9888_trig_resume(chip);
 }

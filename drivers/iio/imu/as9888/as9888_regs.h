@@ -2,8 +2,8 @@
 /*
  * AS9888 register map and timing (datasheet sections 2, 3 and 5).
  *
- * Only macros: this header is shared by the kernel driver, the userspace
- * daemon and the chip model, so it depends on <linux/bits.h> alone.
+ * Only macros, depending on <linux/bits.h> alone, so that tools outside the
+ * kernel can use the same register map.
  */
 #ifndef AS9888_REGS_H
 #define AS9888_REGS_H

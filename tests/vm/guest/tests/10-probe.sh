@@ -2,7 +2,7 @@
 # Probe on the adapter: modules, the two IIO devices (one per sensor, under
 # the same bus device), the data-ready trigger named after the accel
 # device, GPIO lines, mount matrices, NVMEM.
-plan 20
+plan 21
 check "driver modules load" load_driver
 check "adapter module loads" load_sim
 check "as9888-accel and as9888-magn IIO devices appear" wait_dev 5
@@ -34,13 +34,18 @@ eq "accel mount matrix from the software node" \
 	"$(cat $DEV/in_accel_mount_matrix 2>/dev/null)" "0, 1, 0; -1, 0, 0; 0, 0, 1"
 eq "magn mount matrix from the software node" \
 	"$(cat $MDEV/in_magn_mount_matrix 2>/dev/null)" "0, 1, 0; -1, 0, 0; 0, 0, 1"
+# The NVMEM provider "as9888-eeprom<M>", M numbered by the NVMEM core (not
+# by the IIO device), is a child of the chip's bus device
 N=$(ls /sys/bus/nvmem/devices/ 2>/dev/null | grep as9888-eeprom | head -n1)
 if [ -n "$N" ]; then
 	E=$(od -A n -t x1 /sys/bus/nvmem/devices/$N/nvmem | tr -s ' \n' ' ' | sed 's/^ //; s/ $//')
-	eq "NVMEM named after the accel device: as9888-eeprom${DEV##*iio:device}" "$N" "as9888-eeprom${DEV##*iio:device}"
+	eq "one NVMEM provider as9888-eeprom<M>" \
+		"$(ls /sys/bus/nvmem/devices/ | grep -c '^as9888-eeprom')" 1
+	eq "NVMEM $N is a child of the bus device" \
+		"$(readlink -f /sys/bus/nvmem/devices/$N/..)" "$(readlink -f $DEV/..)"
 	eq "NVMEM $N holds the unit's EEPROM" "$E" \
 		"9a 71 15 5c 80 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 50"
 else
-	nok "NVMEM provider as9888-eeprom<N> registered"
-	plan_more -1	# (its name and contents are not checked)
+	nok "NVMEM provider as9888-eeprom<M> registered"
+	plan_more -2	# (its number, parent and contents are not checked)
 fi
