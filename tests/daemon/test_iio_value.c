@@ -20,6 +20,8 @@
 #include "iio_value.h"
 
 #define ARRAY_LEN(a)	(sizeof(a) / sizeof((a)[0]))
+/* 8192 LSB in Q16, a value with six exact decimal places */
+#define Q16_8192	(8192 * 65536)
 
 static void q16_text(int32_t q16, const char *want)
 {
@@ -40,7 +42,7 @@ static void q16_format_examples(void **state)
 	q16_text(-65536, "-1.000000");
 	q16_text(-813056, "-12.406250");
 	q16_text(-813057, "-12.406265");
-	q16_text(AS9888_CAL_OFFSET_MAX_Q16, "8192.000000");
+	q16_text(Q16_8192, "8192.000000");
 	q16_text(INT32_MIN, "-32768.000000");
 	q16_text(INT32_MAX, "32767.999985");
 }
@@ -84,8 +86,8 @@ static void q16_round_trip(void **state)
 		q16_round_trip_one((int32_t)q);
 	q16_round_trip_one(INT32_MIN);
 	q16_round_trip_one(INT32_MAX);
-	q16_round_trip_one(AS9888_CAL_OFFSET_MAX_Q16);
-	q16_round_trip_one(-AS9888_CAL_OFFSET_MAX_Q16);
+	q16_round_trip_one(Q16_8192);
+	q16_round_trip_one(-Q16_8192);
 }
 
 static void q16_parse_accepts(void **state)
@@ -94,7 +96,7 @@ static void q16_parse_accepts(void **state)
 		{ "3", 3 << 16 }, { "0.5", 32768 }, { "-0.5", -32768 },
 		{ "-0", 0 }, { "0.000000", 0 }, { "-0.000015", -1 },
 		{ "12.40625", 813056 }, { "-12.406250", -813056 },
-		{ "007", 7 << 16 }, { "8192.000000", AS9888_CAL_OFFSET_MAX_Q16 },
+		{ "007", 7 << 16 }, { "8192.000000", Q16_8192 },
 		{ "-32768", INT32_MIN },
 	};
 	size_t i;
