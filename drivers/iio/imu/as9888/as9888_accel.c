@@ -333,6 +333,10 @@ static const struct iio_chan_spec_ext_info as9888_accel_ext_info[] = {
 	{ }
 };
 
+/*
+ * realbits 16: the compensated values span s16, but one chip LSB is about
+ * four of them, so the resolution is the chip's 12 bits.
+ */
 #define AS9888_ACCEL_CHANNEL(_axis) {					\
 	.type = IIO_ACCEL,						\
 	.modified = 1,							\
@@ -348,10 +352,6 @@ static const struct iio_chan_spec_ext_info as9888_accel_ext_info[] = {
 	.info_mask_shared_by_all = BIT(IIO_CHAN_INFO_SAMP_FREQ),	\
 	.info_mask_shared_by_all_available = BIT(IIO_CHAN_INFO_SAMP_FREQ), \
 	.scan_index = AS9888_SCAN_ACCEL_##_axis,			\
-	/*								\
-	 * The compensated value spans s16, but one chip LSB is about	\
-	 * four of its LSB: the resolution is the chip's 12 bits	\
-	 */								\
 	.scan_type = {							\
 		.sign = 's',						\
 		.realbits = 16,						\

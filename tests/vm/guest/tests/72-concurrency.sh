@@ -63,9 +63,9 @@ done
 # writes while buffering
 cb_ok=0; cb_back=0; lp_busy=0; i=0
 while [ $i -lt 3 ]; do
-	# one linear DAC code more each time, away from the end of the range:
-	# 2048 / (gain + 16) chip counts at the output each
-	cb=$((b0 + (i + 1) * (1 - 2 * (b0 > 0))))
+	# 200 more each time (about one DAC code, 2048 / (gain + 16) chip
+	# counts), away from the end of the range
+	cb=$((b0 + (i + 1) * 200 * (1 - 2 * (b0 > 0))))
 	if echo $cb 2>/tmp/cc-w.err > $DEV/in_accel_x_calibbias; then
 		cb_ok=$((cb_ok + 1))
 		[ "$(cat $DEV/in_accel_x_calibbias)" = $cb ] && cb_back=$((cb_back + 1))

@@ -36,7 +36,7 @@ check "iio_info: as9888-magn: channel timestamp, s64, index 3" in_magn 'timestam
 check_not "iio_info: as9888-accel has no magnetometer channel" in_accel 'magn_'
 check_not "iio_info: as9888-magn has no accelerometer or temperature channel" \
 	sh -c "echo '$IM' | grep -q -e 'accel_' -e 'temp:'"
-for a in calibbias calibbias_available caliboffset calibtemp mount_matrix \
+for a in calibbias calibbias_available mount_matrix \
 	oversampling_ratio oversampling_ratio_available raw scale; do
 	check "iio_info: as9888-accel: accel attribute $a" in_accel "attr  [0-9]: $a value: "
 done
@@ -53,8 +53,8 @@ A=$(iio_attr -c as9888-accel accel_z scale 2>&1)
 eq "iio_attr: accel_z scale as sysfs has it" "$A" "$(cat $DEV/in_accel_scale)"
 Z=$(iio_attr -c as9888-accel accel_z raw 2>&1)
 near "iio_attr: accel_z raw 1 g = 1024" "$Z" 1024 3
-eq "iio_attr: accel_x caliboffset" "$(iio_attr -c as9888-accel accel_x caliboffset 2>&1)" 0.000000
-eq "iio_attr: accel calibtemp" "$(iio_attr -c as9888-accel accel_x calibtemp 2>&1)" 25000
+eq "iio_attr: accel_x calibbias as sysfs has it" \
+	"$(iio_attr -c as9888-accel accel_x calibbias 2>&1)" "$(cat $DEV/in_accel_x_calibbias)"
 b0=$(cat $DEV/in_accel_y_calibbias)
 W=$(iio_attr -c as9888-accel accel_y calibbias $((b0 + 4)) 2>&1)
 eq "iio_attr: a write prints the value read back" "$W" $((b0 + 4))
