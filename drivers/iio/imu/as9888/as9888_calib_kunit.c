@@ -498,6 +498,9 @@ static const struct as9888_comp_case as9888_comp_cases[] = {
 	{ "-1 g", -240, Q16(16), Q16(256), 0, -1024 },
 	{ "rounded up", 1, 0, Q16(260), 0, 4 },		/* 3.938 */
 	{ "rounded down", 0, Q16(1) / 2, Q16(300), 0, -2 },	/* -1.707 */
+	/* half-way cases round up: a calibbias moves the result exactly */
+	{ "2.5 up", 0, -Q16(5) / 8, Q16(256), 0, 3 },
+	{ "-1.5 up", 0, Q16(3) / 8, Q16(256), 0, -1 },
 	{ "clamped high", 2047, Q16(-2000), Q16(100), -ERANGE, 32767 },
 	{ "clamped low", -2048, Q16(2000), Q16(100), -ERANGE, -32768 },
 	{ "zero St", 1, 0, 0, -EINVAL, 0 },
@@ -588,7 +591,8 @@ static void as9888_test_bias_moves_output(struct kunit *test)
 	struct as9888_eeprom ee;
 	s32 ot0, ot, st0, st;
 	s16 out0, out;
-	int raw, i, lin;
+	unsigned int i;
+	int raw, lin;
 	u8 da;
 
 	as9888_decode_example(test, &ee);
@@ -615,6 +619,24 @@ static void as9888_test_bias_moves_output(struct kunit *test)
 			}
 		}
 	}
+
+	/*
+	 * A half-way case: Y at DAC code -67 reads -1956, which compensates
+	 * to 518.5 exactly; 519 and 520 with the calibbias 1 (ties to even
+	 * would give 518 and 520)
+	 */
+	da = as9888_lin2dac(ee.axis[1].ga, -AS9888_DAC_LIN_MAX);
+	cal.bias[1] = 0;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 1, da,
+						      ee.t_rt_mdegc, &ot0, &st0), 0);
+	KUNIT_ASSERT_EQ(test, as9888_accel_compensate(-1956, ot0, st0, &out0), 0);
+	KUNIT_EXPECT_EQ(test, out0, 519);
+	cal.bias[1] = 1;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 1, da,
+						      ee.t_rt_mdegc, &ot, &st), 0);
+	KUNIT_ASSERT_EQ(test, as9888_accel_compensate(-1956, ot, st, &out), 0);
+	KUNIT_EXPECT_EQ(test, out, 520);
+	cal.bias[1] = 0;
 
 	/* 10 degC warmer the same offset reads St_RT / St(t) times larger */
 	cal.bias[0] = -1024;
@@ -662,7 +684,7 @@ static void as9888_test_bias_dac(struct kunit *test)
 
 	/* Beyond the DAC's range the DAC is clamped, the bias still taken */
 	trim.da = AS9888_DAC_ZERO + 60;
-	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, -AS9888_CALIBBIAS_MAX,
+	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, AS9888_CALIBBIAS_MAX,
 					      &da), 0);
 	KUNIT_EXPECT_EQ(test, da, AS9888_DAC_POS_MAX);
 
