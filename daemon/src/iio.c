@@ -228,36 +228,20 @@ static int read_text(const char *dir, const char *name, char *buf,
 	return ret < 0 ? ret : 0;
 }
 
-/*
- * @name holds a decimal within @min..@max: a Q16 value with @q16 (as
- * iio_q16_format() prints it), else an integer
- */
-static int read_number(const char *dir, const char *name, bool q16, long min,
-		       long max, long *v, char *err, size_t errlen)
+/* @name holds a decimal integer within @min..@max */
+static int read_number(const char *dir, const char *name, long min, long max,
+		       long *v, char *err, size_t errlen)
 {
-	char val[IIO_ATTR_MAX], lo[IIO_Q16_TEXT_MAX], hi[IIO_Q16_TEXT_MAX];
-	int32_t q;
+	char val[IIO_ATTR_MAX];
 	int ret;
 
 	ret = read_text(dir, name, val, sizeof(val), err, errlen);
 	if (ret)
 		return ret;
-	if (q16) {
-		ret = iio_q16_parse(val, &q);
-		if (!ret && (q < min || q > max))
-			ret = -ERANGE;
-		if (!ret)
-			*v = q;
-		iio_q16_format((int32_t)min, lo, sizeof(lo));
-		iio_q16_format((int32_t)max, hi, sizeof(hi));
-	} else {
-		ret = iio_int_parse(val, min, max, v);
-		snprintf(lo, sizeof(lo), "%ld", min);
-		snprintf(hi, sizeof(hi), "%ld", max);
-	}
+	ret = iio_int_parse(val, min, max, v);
 	if (ret)
-		snprintf(err, errlen, "%s/%s reads \"%s\": %s (%s..%s)", dir, name,
-			 val, iio_value_strerror(ret), lo, hi);
+		snprintf(err, errlen, "%s/%s reads \"%s\": %s (%ld..%ld)", dir,
+			 name, val, iio_value_strerror(ret), min, max);
 
 	return ret;
 }
@@ -282,7 +266,7 @@ int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = read_number(dir, iio_calibbias_attr[axis], false,
+		ret = read_number(dir, iio_calibbias_attr[axis],
 				  -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX,
 				  &v, err, errlen);
 		if (ret)

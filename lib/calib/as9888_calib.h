@@ -41,10 +41,6 @@ int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
 int as9888_accel_uncompensate(s16 out, s32 ot_q16, s32 st_q16, s16 *raw);
 int as9888_dac_bias(const struct as9888_axis_trim *trim, u8 da, s32 *bias);
 
-/* Q16 values as decimals with six places, exactly */
-s64 as9888_q16_to_micro(s32 q16);
-int as9888_micro_to_q16(s64 micro, s32 *q16);
-
 /* Judgments of the application note */
 bool as9888_fluctuation_ok(s16 min, s16 max, u32 limit);
 

@@ -3,7 +3,7 @@
  * AS9888 calibration arithmetic that only userspace needs: the factory
  * test's level-test offsets and the calibbias they give (6.5, 6.6), sample
  * statistics (Note 2, D7), posture detection (D8), the judgments of the
- * application note, Q16 decimals, and the inverse of the driver's
+ * application note, and the inverse of the driver's
  * compensation (which the daemon's IIO backend uses to get back the chip's
  * own reading, checking it sample by sample: it is no kernel ABI).
  *
@@ -23,9 +23,6 @@
 
 #define AS9888_UG_PER_G			1000000
 #define AS9888_ACC_MEAN_Q16_MAX		(32768LL * AS9888_Q16_ONE)
-#define AS9888_MICRO			1000000
-/* Largest |micro| as9888_micro_to_q16() takes: 2^31 * 10^6 / 2^16 < 2^36 */
-#define AS9888_MICRO_ABS_MAX		BIT_ULL(36)
 
 /**
  * as9888_mdegc_to_tmps() - the TMPS code the chip reports at a temperature
@@ -240,45 +237,6 @@ int as9888_accel_uncompensate(s16 out, s32 ot_q16, s32 st_q16, s16 *raw)
 		return -ERANGE;
 
 	*raw = (s16)r;
-
-	return 0;
-}
-
-/**
- * as9888_q16_to_micro() - a Q16 value in millionths, rounded to nearest
- * @q16: the value
- *
- * A millionth is finer than 2^-16, so as9888_micro_to_q16() gets @q16
- * back exactly: this is how Q16 values cross sysfs.
- *
- * Return: rint(@q16 * 10^6 / 2^16).
- */
-s64 as9888_q16_to_micro(s32 q16)
-{
-	return as9888_div_round_s64((s64)q16 * AS9888_MICRO, AS9888_Q16_ONE);
-}
-
-/**
- * as9888_micro_to_q16() - millionths to Q16, rounded to nearest
- * @micro: the value in millionths
- * @q16: rint(@micro * 2^16 / 10^6)
- *
- * Return: 0, or -ERANGE when the value does not fit in Q16.
- */
-int as9888_micro_to_q16(s64 micro, s32 *q16)
-{
-	s64 q;
-
-	/* |micro| <= 2^36 keeps the product in range */
-	if (!as9888_in_range(micro, -(s64)AS9888_MICRO_ABS_MAX,
-			     AS9888_MICRO_ABS_MAX))
-		return -ERANGE;
-
-	q = as9888_div_round_s64(micro * AS9888_Q16_ONE, AS9888_MICRO);
-	if (!as9888_in_range(q, S32_MIN, S32_MAX))
-		return -ERANGE;
-
-	*q16 = (s32)q;
 
 	return 0;
 }
