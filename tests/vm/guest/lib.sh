@@ -354,11 +354,12 @@ cal_near() {
 	fi
 }
 # dac_get: the offset DAC registers AXDA..AZDA (0x37..0x39) the chip runs
-# with, through the IIO core's debugfs register access, "0xNN 0xNN 0xNN"
+# with, through the IIO core's debugfs register access (which prints
+# "0x%X"), as "0xnn 0xnn 0xnn"
 dac_get() {
 	_d=/sys/kernel/debug/iio/${DEV##*/}/direct_reg_access
 	for _r in 0x37 0x38 0x39; do
-		echo $_r > $_d && cat $_d
+		echo $_r > $_d && printf '0x%02x\n' $(($(cat $_d)))
 	done | tr '\n' ' ' | sed 's/ $//'
 }
 # bias_dac "BX BY BZ": the DAC register values the driver chooses for
