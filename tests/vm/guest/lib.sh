@@ -315,9 +315,13 @@ BIAS_AWK='function s5(v) { v = v % 32; return v >= 16 ? v - 32 : v }
 		if (dt >= 256) dt -= 512
 		return dt * 1.5 / d }
 	function bias(i, o, t) { return -(o + kote(i) * (trt() - t)) / (256 + s5(e[16 + i] % 32)) * 1024 }'
-# ee_bytes: the EEPROM of the device under test, 21 decimals
+# ee_bytes: the EEPROM of the device under test, 21 decimals, from the
+# NVMEM provider beside the IIO device (both children of the bus device)
 ee_bytes() {
-	od -A n -t u1 -v /sys/bus/nvmem/devices/as9888-eeprom${DEV##*iio:device}/nvmem | tr -s ' \n' ' '
+	for _n in "$(readlink -f $DEV)"/../as9888-eeprom*/nvmem; do
+		od -A n -t u1 -v "$_n" | tr -s ' \n' ' '
+		break
+	done
 }
 # put_cal BX BY BZ: write the calibbias values as they are
 put_cal() {
