@@ -61,8 +61,8 @@ eq "iio_attr: a write prints the value read back" "$W" $((b0 + 4))
 eq "iio_attr: calibbias written through libiio reads back in sysfs" \
 	"$(cat $DEV/in_accel_y_calibbias)" $((b0 + 4))
 eq "iio_attr: and through libiio" "$(iio_attr -c as9888-accel accel_y calibbias 2>&1)" $((b0 + 4))
-iio_attr -c as9888-accel accel_y calibbias 99 >/dev/null 2>&1
-eq "iio_attr: out-of-range calibbias 99 leaves the value" "$(cat $DEV/in_accel_y_calibbias)" $((b0 + 4))
+iio_attr -c as9888-accel accel_y calibbias 9999 >/dev/null 2>&1
+eq "iio_attr: out-of-range calibbias 9999 leaves the value" "$(cat $DEV/in_accel_y_calibbias)" $((b0 + 4))
 echo "$b0" > $DEV/in_accel_y_calibbias
 
 # 50 scans of accel x/y/z + timestamp with the data-ready trigger: 16 bytes each
