@@ -52,7 +52,7 @@ accel_near "compensated readings after reload + restore: 0 0 1 g" "$(accel_mean 
 # A record of the simulator, for the same unit: refused
 $CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt --record /tmp/rec-sim > /tmp/ft-sim.log 2>&1
 check "the simulator's record says so (source = simulator)" grep -qx "source = simulator" /tmp/rec-sim
-set_cal $CAL0
+put_cal $CAL0
 if $CALIBD restore --backend iio --record /tmp/rec-sim > /tmp/r2.log 2>&1; then
 	nok "restore refuses the simulator's record"
 else
