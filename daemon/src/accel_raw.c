@@ -29,12 +29,14 @@ int accel_raw_recover(const struct accel_comp *c,
 				 strerror(-ret));
 			return -EINVAL;
 		}
+		/*
+		 * The driver's mark of a chip reading at its rail: that rail,
+		 * which the note's saturation judgment (3-14..3-19) fails
+		 */
 		if (out[axis] <= AS9888_ACC_OUT_MIN ||
 		    out[axis] >= AS9888_ACC_OUT_MAX) {
-			snprintf(why, whylen,
-				 "%c reads %d, the limit of the driver's output: the chip's own reading cannot be recovered (saturated)",
-				 axis_name[axis], out[axis]);
-			return -ERANGE;
+			r[axis] = out[axis] < 0 ? AS9888_ACC_MIN : AS9888_ACC_MAX;
+			continue;
 		}
 		ret = as9888_accel_uncompensate(out[axis], ot_q16, st_q16,
 						&r[axis]);

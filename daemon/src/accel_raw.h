@@ -33,12 +33,13 @@ struct accel_comp {
 
 /*
  * The raw sample behind the compensated sample @out whose burst had TMPS
- * @tmps, into @raw. 0; -ERANGE when an axis is at the limit of the
- * driver's output (clamped: the chip's reading cannot be known) or gives
- * back a value the chip cannot output or that does not compensate to @out
- * again (the calibration is not the one the driver used, or the driver
- * rounds differently); -EINVAL when Ot/St cannot be computed at @tmps. @why says
- * which axis and why; @raw is untouched on failure.
+ * @tmps, into @raw; an axis at the limit of the driver's output (its mark
+ * of a saturated chip) comes back as the chip's rail of that sign. 0;
+ * -ERANGE when an axis gives back a value the chip cannot output or that
+ * does not compensate to @out again (the calibration is not the one the
+ * driver used, or the driver rounds differently); -EINVAL when Ot/St
+ * cannot be computed at @tmps. @why says which axis and why; @raw is
+ * untouched on failure.
  */
 int accel_raw_recover(const struct accel_comp *c,
 		      const int16_t out[AS9888_AXES], uint8_t tmps,

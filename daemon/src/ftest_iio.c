@@ -30,9 +30,10 @@
  * application note judges and averages the chip's own output. The test
  * takes it back (accel_raw.h): with the EEPROM, the driver's calibbias as
  * read and the DAC it gives, Ot and St at each sample's own TMPS, then
- * as9888_accel_uncompensate(), checked by compensating again. A sample at
+ * as9888_accel_uncompensate(), checked by compensating again. An axis at
  * the limit of the driver's output (the driver's mark of a saturated
- * chip) cannot be taken back: it fails the run as saturated.
+ * chip) comes back as the chip's rail, which the saturation judgment of
+ * steps 3-14..3-19 fails as on the register backend.
  *
  * Of the pin checks of D11, INT1 is judged by the data-ready trigger
  * delivering samples; RSTN and INT2 need the pins, which the driver owns or
