@@ -11,7 +11,7 @@
 #   uevent      kernel uevent datagrams
 #   iio_scan    the IIO buffer layout (scan_elements _index/_type) and samples
 #   iio_value   the driver's attribute values: self-test verdict and
-#               readings, Q16 offsets, integers
+#               readings, integers
 # Usage: scripts/fuzz.sh [SECONDS [TARGET...]]: SECONDS (default 60) in
 # all, shared equally by the targets (default: all of them).
 # Seed corpora live in tests/fuzz/corpus/TARGET; new inputs found go to a

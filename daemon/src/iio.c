@@ -18,11 +18,6 @@ const char *const iio_calibbias_attr[AS9888_AXES] = {
 	"in_accel_x_calibbias", "in_accel_y_calibbias", "in_accel_z_calibbias",
 };
 
-const char *const iio_caliboffset_attr[AS9888_AXES] = {
-	"in_accel_x_caliboffset", "in_accel_y_caliboffset",
-	"in_accel_z_caliboffset",
-};
-
 /* $@name when set and not empty, else @fallback */
 static const char *root_from_env(const char *name, const char *fallback)
 {
@@ -249,36 +244,20 @@ static int read_text(const char *dir, const char *name, char *buf,
 	return ret < 0 ? ret : 0;
 }
 
-/*
- * @name holds a decimal within @min..@max: a Q16 value with @q16 (as
- * iio_q16_format() prints it), else an integer
- */
-static int read_number(const char *dir, const char *name, bool q16, long min,
-		       long max, long *v, char *err, size_t errlen)
+/* @name holds a decimal integer within @min..@max */
+static int read_number(const char *dir, const char *name, long min, long max,
+		       long *v, char *err, size_t errlen)
 {
-	char val[IIO_ATTR_MAX], lo[IIO_Q16_TEXT_MAX], hi[IIO_Q16_TEXT_MAX];
-	int32_t q;
+	char val[IIO_ATTR_MAX];
 	int ret;
 
 	ret = read_text(dir, name, val, sizeof(val), err, errlen);
 	if (ret)
 		return ret;
-	if (q16) {
-		ret = iio_q16_parse(val, &q);
-		if (!ret && (q < min || q > max))
-			ret = -ERANGE;
-		if (!ret)
-			*v = q;
-		iio_q16_format((int32_t)min, lo, sizeof(lo));
-		iio_q16_format((int32_t)max, hi, sizeof(hi));
-	} else {
-		ret = iio_int_parse(val, min, max, v);
-		snprintf(lo, sizeof(lo), "%ld", min);
-		snprintf(hi, sizeof(hi), "%ld", max);
-	}
+	ret = iio_int_parse(val, min, max, v);
 	if (ret)
-		snprintf(err, errlen, "%s/%s reads \"%s\": %s (%s..%s)", dir, name,
-			 val, iio_value_strerror(ret), lo, hi);
+		snprintf(err, errlen, "%s/%s reads \"%s\": %s (%ld..%ld)", dir,
+			 name, val, iio_value_strerror(ret), min, max);
 
 	return ret;
 }
@@ -295,31 +274,6 @@ static int write_text(const char *dir, const char *name, const char *val,
 	return ret;
 }
 
-int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
-		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
-		  char *err, size_t errlen)
-{
-	char want[IIO_ATTR_MAX];
-	int axis, ret;
-
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		uint8_t ga = ee->axis[axis].ga;
-		long lin;
-
-		snprintf(want, sizeof(want), "%d", as9888_dac2lin(ga, da[axis]));
-		ret = write_text(dir, iio_calibbias_attr[axis], want, err, errlen);
-		if (!ret)
-			ret = read_number(dir, iio_calibbias_attr[axis], false,
-					  -AS9888_DAC_LIN_MAX, AS9888_DAC_LIN_MAX,
-					  &lin, err, errlen);
-		if (ret)
-			return ret;
-		got[axis] = as9888_lin2dac(ga, (int)lin);
-	}
-
-	return 0;
-}
-
 int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 		       char *err, size_t errlen)
 {
@@ -328,19 +282,13 @@ int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = read_number(dir, iio_caliboffset_attr[axis], true,
-				  -AS9888_CAL_OFFSET_MAX_Q16,
-				  AS9888_CAL_OFFSET_MAX_Q16, &v, err, errlen);
+		ret = read_number(dir, iio_calibbias_attr[axis],
+				  -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX,
+				  &v, err, errlen);
 		if (ret)
 			return ret;
-		c.offset_q16[axis] = (int32_t)v;
+		c.bias[axis] = (int32_t)v;
 	}
-	ret = read_number(dir, IIO_CALIBTEMP_ATTR, false,
-			  as9888_tmps_to_mdegc(AS9888_TMPS_MAX),
-			  as9888_tmps_to_mdegc(AS9888_TMPS_MIN), &v, err, errlen);
-	if (ret)
-		return ret;
-	c.t_mdegc = (int32_t)v;
 	*cal = c;
 
 	return 0;
@@ -354,33 +302,60 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = iio_q16_format(cal->offset_q16[axis], val, sizeof(val));
-		if (!ret)
-			ret = write_text(dir, iio_caliboffset_attr[axis], val, err,
-					 errlen);
+		snprintf(val, sizeof(val), "%d", cal->bias[axis]);
+		ret = write_text(dir, iio_calibbias_attr[axis], val, err, errlen);
 		if (ret)
 			return ret;
 	}
-	snprintf(val, sizeof(val), "%d", cal->t_mdegc);
-	ret = write_text(dir, IIO_CALIBTEMP_ATTR, val, err, errlen);
-	if (!ret)
-		ret = iio_read_accel_cal(dir, &got, err, errlen);
+	ret = iio_read_accel_cal(dir, &got, err, errlen);
 	if (ret)
 		return ret;
 	for (axis = 0; axis < AS9888_AXES; axis++)
-		if (got.offset_q16[axis] != cal->offset_q16[axis]) {
-			char back[IIO_Q16_TEXT_MAX];
-
-			iio_q16_format(cal->offset_q16[axis], val, sizeof(val));
-			iio_q16_format(got.offset_q16[axis], back, sizeof(back));
-			snprintf(err, errlen, "%s/%s: wrote %s, reads back %s",
-				 dir, iio_caliboffset_attr[axis], val, back);
+		if (got.bias[axis] != cal->bias[axis]) {
+			snprintf(err, errlen, "%s/%s: wrote %d, reads back %d",
+				 dir, iio_calibbias_attr[axis], cal->bias[axis],
+				 got.bias[axis]);
 			return -EIO;
 		}
-	if (got.t_mdegc != cal->t_mdegc) {
-		snprintf(err, errlen, "%s/%s: wrote %d, reads back %d", dir,
-			 IIO_CALIBTEMP_ATTR, cal->t_mdegc, got.t_mdegc);
-		return -EIO;
+
+	return 0;
+}
+
+int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
+		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
+		  char *err, size_t errlen)
+{
+	struct as9888_accel_cal cal, back;
+	int axis, ret;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		ret = as9888_dac_bias(&ee->axis[axis], da[axis], &cal.bias[axis]);
+		if (ret) {
+			snprintf(err, errlen,
+				 "%s/%s: no calibbias gives DAC 0x%02x: %s",
+				 dir, iio_calibbias_attr[axis], da[axis],
+				 strerror(-ret));
+			return ret;
+		}
+	}
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		char val[IIO_ATTR_MAX];
+
+		snprintf(val, sizeof(val), "%d", cal.bias[axis]);
+		ret = write_text(dir, iio_calibbias_attr[axis], val, err, errlen);
+		if (ret)
+			return ret;
+	}
+	ret = iio_read_accel_cal(dir, &back, err, errlen);
+	if (ret)
+		return ret;
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		uint8_t ga = ee->axis[axis].ga;
+
+		as9888_bias_dac(&ee->axis[axis], back.bias[axis], &got[axis]);
+		/* 0x00 and 0x80 are both DAC 0 */
+		if (as9888_dac2lin(ga, got[axis]) == as9888_dac2lin(ga, da[axis]))
+			got[axis] = da[axis];
 	}
 
 	return 0;
@@ -390,7 +365,6 @@ int iio_apply_record(const char *dir, const struct calib_record *rec)
 {
 	struct as9888_accel_cal cal;
 	struct as9888_eeprom ee;
-	uint8_t got[AS9888_AXES];
 	char err[IIO_ERR_LEN];
 	int ret;
 
@@ -405,16 +379,7 @@ int iio_apply_record(const char *dir, const struct calib_record *rec)
 		return ret;
 	}
 
-	ret = iio_write_dac(dir, &ee, rec->dac, got, err, sizeof(err));
-	if (!ret && memcmp(got, rec->dac, AS9888_AXES)) {
-		snprintf(err, sizeof(err),
-			 "%s: calibbias reads back DAC 0x%02x 0x%02x 0x%02x, not the record's 0x%02x 0x%02x 0x%02x",
-			 dir, got[0], got[1], got[2], rec->dac[0], rec->dac[1],
-			 rec->dac[2]);
-		ret = -EIO;
-	}
-	if (!ret)
-		ret = iio_write_accel_cal(dir, &cal, err, sizeof(err));
+	ret = iio_write_accel_cal(dir, &cal, err, sizeof(err));
 	if (ret)
 		fprintf(stderr, "as9888-calibd: %s\n", err);
 

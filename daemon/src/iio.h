@@ -3,9 +3,8 @@
  * The AS9888 IIO driver's interfaces as the daemon uses them: finding the
  * chip's two IIO devices in sysfs (the accelerometer's and, beside it, the
  * magnetometer's), the EEPROM through NVMEM, their debugfs files, the
- * offset DAC (in_accel_*_calibbias) and the calibration
- * (in_accel_*_caliboffset, in_accel_calibtemp), and applying a record
- * through them (Documentation/ABI/testing/sysfs-bus-iio-as9888).
+ * calibration (in_accel_*_calibbias, which also sets the offset DAC), and
+ * applying a record through it (Documentation/iio/as9888.rst).
  */
 #ifndef AS9888_IIO_H
 #define AS9888_IIO_H
@@ -42,10 +41,8 @@
 #define IIO_DEVICE_PREFIX	"iio:device"
 #define IIO_TRIGGER_PREFIX	"trigger"
 
-/* The accelerometer's offset DAC and calibration attributes */
+/* The accelerometer's calibration attributes */
 extern const char *const iio_calibbias_attr[AS9888_AXES];
-extern const char *const iio_caliboffset_attr[AS9888_AXES];
-#define IIO_CALIBTEMP_ATTR	"in_accel_calibtemp"
 
 /* The sysfs root: $AS9888_SYSFS, default /sys */
 const char *iio_sysfs_root(void);
@@ -95,20 +92,19 @@ int iio_read_debugfs(const char *dir, const char *name, char *buf,
 int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN]);
 
 /*
- * Write the DAC register values @da (linear codes with @ee's gains) to
- * in_accel_*_calibbias and read them back as register values into @got
- * (compare them: the driver may refuse a value silently). 0, or -errno
- * with the attribute and the reason in @err.
+ * Run the chip with the DAC register values @da: write the calibbias
+ * values whose DAC they are (as9888_dac_bias()) and read them back; @got
+ * receives the DAC values of what reads back (as9888_bias_dac()). 0, or
+ * -errno with the attribute and the reason in @err.
  */
 int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
 		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
 		  char *err, size_t errlen);
 
 /*
- * The driver's calibration: in_accel_{x,y,z}_caliboffset (Q16 exactly,
- * within +-AS9888_CAL_OFFSET_MAX_LSB) and in_accel_calibtemp
- * (millidegrees, -30..85 degC). 0, or -errno with the attribute, what it
- * reads and why it is refused in @err.
+ * The driver's calibration: in_accel_{x,y,z}_calibbias, integers within
+ * +-AS9888_CALIBBIAS_MAX. 0, or -errno with the attribute, what it reads
+ * and why it is refused in @err.
  */
 int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 		       char *err, size_t errlen);
@@ -121,12 +117,11 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 			char *err, size_t errlen);
 
 /*
- * Put @rec in effect in the device at @dir (no identity check): its DAC
- * values into calibbias, and the calibration its level test gives
- * (as9888_accel_cal_from_level() with the DAC values the level test ran
- * with, the record's) into caliboffset and calibtemp; everything read
- * back. Nothing is written when the record gives no calibration. 0 or
- * -errno, said on stderr.
+ * Put @rec in effect in the device at @dir (no identity check): the
+ * calibration its level test gives (as9888_accel_cal_from_level() with
+ * the DAC values the level test ran with, the record's) into calibbias,
+ * read back; the driver chooses the DAC from it. Nothing is written when
+ * the record gives no calibration. 0 or -errno, said on stderr.
  */
 int iio_apply_record(const char *dir, const struct calib_record *rec);
 

@@ -7,8 +7,6 @@
 
 #include "iio_value.h"
 
-#define IIO_MICRO_PLACES	6
-#define IIO_MICRO		1000000
 #define IIO_MILLI_PLACES	3
 #define IIO_MILLI		1000
 /* Integer digits beyond this are out of range: 10^12 * 10^6 < 2^63 */
@@ -61,30 +59,6 @@ static int parse_decimal(const char *s, unsigned int places, char stop,
 	*end = s;
 
 	return 0;
-}
-
-int iio_q16_format(int32_t q16, char *buf, size_t size)
-{
-	int64_t micro = as9888_q16_to_micro(q16);
-	uint64_t mag = micro < 0 ? -(uint64_t)micro : (uint64_t)micro;
-	int n;
-
-	n = snprintf(buf, size, "%s%llu.%06llu", micro < 0 ? "-" : "",
-		     (unsigned long long)(mag / IIO_MICRO),
-		     (unsigned long long)(mag % IIO_MICRO));
-
-	return n < 0 || (size_t)n >= size ? -ENOSPC : 0;
-}
-
-int iio_q16_parse(const char *s, int32_t *q16)
-{
-	const char *end;
-	int64_t micro;
-	int ret;
-
-	ret = parse_decimal(s, IIO_MICRO_PLACES, '\0', &micro, &end);
-
-	return ret ? ret : as9888_micro_to_q16(micro, q16);
 }
 
 int iio_int_parse(const char *s, long min, long max, long *out)

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * The AS9888 driver's attribute values as text, parsed and formatted
- * (Documentation/ABI/testing/sysfs-bus-iio-as9888): Q16 offsets as decimals
- * with six places, integers, the self-test verdict and the adjusted
+ * (Documentation/ABI/testing/sysfs-bus-iio-as9888): integers, the
+ * self-test verdict and the adjusted
  * self-test readings of debugfs. Pure text, no files: every parser refuses
  * a malformed or out-of-range value whole and leaves its output untouched.
  */
@@ -14,29 +14,10 @@
 
 #include "as9888_calib.h"
 
-/* Longest text iio_q16_format() writes: "-32768.000000" and a NUL */
-#define IIO_Q16_TEXT_MAX	16
-
-/*
- * @q16 as the driver prints a Q16 value: as9888_q16_to_micro() as a
- * decimal with exactly six places, "-" before any negative value (also one
- * between -1 and 0: "-0.000015"). 0, or -ENOSPC when @size is too small.
- */
-int iio_q16_format(int32_t q16, char *buf, size_t size);
-
-/*
- * A decimal with at most six places ("-12.406250", "3", "0.5") back to
- * Q16 through as9888_micro_to_q16(): exact for every iio_q16_format()
- * text. -EINVAL when @s is not such a decimal (empty, a sign alone, a
- * second point, more than six places, spaces, exponents), -ERANGE when its
- * value does not fit in Q16.
- */
-int iio_q16_parse(const char *s, int32_t *q16);
-
 /* A decimal integer within @min..@max: 0, -EINVAL (malformed) or -ERANGE */
 int iio_int_parse(const char *s, long min, long max, long *out);
 
-/* What iio_q16_parse() and iio_int_parse() said, for a message */
+/* What iio_int_parse() said, for a message */
 const char *iio_value_strerror(int err);
 
 /* The selftest attribute's one word */

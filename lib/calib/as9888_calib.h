@@ -3,7 +3,7 @@
  * AS9888 calibration arithmetic, as userspace sees it: the unit the kernel
  * driver builds (drivers/iio/imu/as9888/as9888_calib.[ch]) plus what only
  * the factory test and the daemon need (as9888_calib_user.c): level-test
- * offsets, the offset DAC optimisation, sample statistics, the posture and
+ * offsets and the calibbias they give, sample statistics, the posture and
  * judgment helpers, and the inverse of the driver's compensation.
  *
  * Userspace includes "as9888_calib.h" and finds this file first (it comes
@@ -16,10 +16,6 @@
 #define AS9888_CALIB_USER_H
 
 #include "../../drivers/iio/imu/as9888/as9888_calib.h"
-
-/* Raw accelerometer sample limits */
-#define AS9888_ACC_MIN			(-2048)
-#define AS9888_ACC_MAX			2047
 
 /* Note 3: recommended fluctuation judgment (max - min), LSB */
 #define AS9888_FLUCTUATION_DEFAULT	15
@@ -43,12 +39,9 @@ int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
 				const u8 da[AS9888_AXES],
 				struct as9888_accel_cal *cal);
 int as9888_accel_uncompensate(s16 out, s32 ot_q16, s32 st_q16, s16 *raw);
-
-/* Offset DAC */
-int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt);
+int as9888_dac_bias(const struct as9888_axis_trim *trim, u8 da, s32 *bias);
 
 /* Judgments of the application note */
-bool as9888_acc_saturated(s16 a);
 bool as9888_fluctuation_ok(s16 min, s16 max, u32 limit);
 
 /* Note 2 / D7: number of samples to average */

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * AS9888 calibration arithmetic that only userspace needs: the factory
- * test's level-test offsets and DAC optimisation (6.5, 6.6, D5, D6), sample
+ * test's level-test offsets and the calibbias they give (6.5, 6.6), sample
  * statistics (Note 2, D7), posture detection (D8), the judgments of the
- * application note, and the inverse of the driver's compensation (which the
- * daemon's IIO backend uses to get back the chip's own reading).
+ * application note, and the inverse of the driver's
+ * compensation (which the daemon's IIO backend uses to get back the chip's
+ * own reading, checking it sample by sample: it is no kernel ABI).
  *
  * The kernel never builds this file. It is the one definition for the
  * daemon and the userspace tests, and builds on the driver's unit
@@ -22,8 +23,6 @@
 
 #define AS9888_UG_PER_G			1000000
 #define AS9888_ACC_MEAN_Q16_MAX		(32768LL * AS9888_Q16_ONE)
-/* DAC rounding: (gain + 16) / 2048 * Ot_L with Ot_L in Q16 */
-#define AS9888_DAC_ROUND_DIV		BIT_ULL(27)	/* 2048 * 65536 */
 
 /**
  * as9888_mdegc_to_tmps() - the TMPS code the chip reports at a temperature
@@ -118,10 +117,12 @@ int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug)
  * @t_level_mdegc: the level-test temperature t_L
  * @g: the gravity direction during the level test
  * @da: the DAC register values the level test ran with
- * @cal: the calibration: Ot_L = A + St(t_L) * G per axis (6.5), referred
- *	 to the factory DAC values, at t_L
+ * @cal: the calibbias of each axis: Ot_L = A + St(t_L) * G (6.5), moved
+ *	 to the factory DAC value (6.6) and to t_RT with Kote (6.5), as
+ *	 output LSB at St_RT, negated and rounded to nearest
  *
- * Return: 0, -EINVAL or -ERANGE for inputs out of range.
+ * Return: 0, -EINVAL or -ERANGE for inputs out of range (-ERANGE also
+ * for an offset beyond +-AS9888_CALIBBIAS_MAX).
  */
 int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
 				const s32 a_mean_q16[AS9888_AXES],
@@ -130,6 +131,7 @@ int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
 				struct as9888_accel_cal *cal)
 {
 	s32 st_q16, ot_l_q16, ref_q16;
+	s64 bias;
 	int axis, ret;
 
 	if (!as9888_in_range(t_level_mdegc, as9888_tmps_to_mdegc(AS9888_TMPS_MAX),
@@ -151,12 +153,56 @@ int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
 						  trim->da, &ref_q16);
 		if (ret)
 			return ret;
-		if (!as9888_in_range(ref_q16, -AS9888_CAL_OFFSET_MAX_Q16,
-				     AS9888_CAL_OFFSET_MAX_Q16))
+		ret = as9888_offset_q16(trim, ref_q16, t_level_mdegc,
+					ee->t_rt_mdegc, &ref_q16);
+		if (ret)
+			return ret;
+		/* -O / St_RT * 1024 with O in Q16: -O / (St_RT * 64) */
+		bias = as9888_div_round_s64(-(s64)ref_q16,
+					    (s64)trim->st_rt * AS9888_Q16_ONE /
+					    AS9888_ACC_OUT_PER_G);
+		if (!as9888_in_range(bias, -AS9888_CALIBBIAS_MAX,
+				     AS9888_CALIBBIAS_MAX))
 			return -ERANGE;
-		cal->offset_q16[axis] = ref_q16;
+		cal->bias[axis] = (s32)bias;
 	}
-	cal->t_mdegc = t_level_mdegc;
+
+	return 0;
+}
+
+/**
+ * as9888_dac_bias() - a calibbias the driver realises with a given DAC
+ * @trim: the axis' decoded EEPROM data
+ * @da: the DAC register value wanted
+ * @bias: a calibbias whose as9888_bias_dac() is @da: the offset of
+ *	  (dac2lin(EAxDA) - dac2lin(@da)) DAC steps, at St_RT
+ *
+ * This is how a factory test through the driver runs the chip with the DAC
+ * values it wants: the driver's only calibration attribute is calibbias.
+ *
+ * Return: 0, -EINVAL for an invalid @da or @trim, -ERANGE when no
+ * calibbias within +-AS9888_CALIBBIAS_MAX gives @da.
+ */
+int as9888_dac_bias(const struct as9888_axis_trim *trim, u8 da, s32 *bias)
+{
+	s64 ot_q16, b;
+	u8 got;
+
+	if (!as9888_dac_valid(da) || !as9888_dac_valid(trim->da) ||
+	    !as9888_in_range(trim->st_rt, 1, AS9888_ST_Q16_MAX / AS9888_Q16_ONE))
+		return -EINVAL;
+
+	ot_q16 = (s64)(as9888_dac2lin(trim->ga, trim->da) -
+		       as9888_dac2lin(trim->ga, da)) *
+		 as9888_dac_step_q16(trim->ga);
+	b = as9888_div_round_s64(-ot_q16, (s64)trim->st_rt * AS9888_Q16_ONE /
+				 AS9888_ACC_OUT_PER_G);
+	if (!as9888_in_range(b, -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX) ||
+	    as9888_bias_dac(trim, (s32)b, &got) ||
+	    as9888_dac2lin(trim->ga, got) != as9888_dac2lin(trim->ga, da))
+		return -ERANGE;
+
+	*bias = (s32)b;
 
 	return 0;
 }
@@ -213,42 +259,6 @@ int as9888_mean_q16(s64 sum, u32 n, s32 *mean_q16)
 	*mean_q16 = (s32)as9888_div_round_s64(sum * AS9888_Q16_ONE, n);
 
 	return 0;
-}
-
-/**
- * as9888_dac_opt() - the optimal DAC value of step 3-23 (6.6, D5, D6)
- * @ga: the gain register value AxGA
- * @da: the DAC register value ADA the level test ran with
- * @ee_gain: EAxGA[5:0]
- * @ot_l_q16: the level-test offset measured with @da, Q16
- * @da_opt: DACopt
- *
- * lin_opt = dac2lin(ga, da) - rint((ee_gain + 16) / 2048 * Ot_L), clamped
- * to the DAC range.
- *
- * Return: 0, or -ERANGE when lin_opt had to be clamped (D6: the function
- * test fails with "offset beyond DAC range"; @da_opt holds the clamped
- * value).
- */
-int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt)
-{
-	s64 shift, lin;
-
-	/* |(63 + 16) * Ot_L| < 2^38: exact, and the division is exact rint */
-	shift = as9888_div_round_s64(((s64)FIELD_GET(AS9888_GA_GAIN_MSK, ee_gain) +
-				      AS9888_DAC_GAIN_OFFSET) * ot_l_q16,
-				     (s64)AS9888_DAC_ROUND_DIV);
-	lin = as9888_dac2lin(ga, da) - shift;
-	*da_opt = as9888_lin2dac(ga, (int)clamp_t(s64, lin, -AS9888_DAC_LIN_MAX,
-						  AS9888_DAC_LIN_MAX));
-
-	return abs(lin) > AS9888_DAC_LIN_MAX ? -ERANGE : 0;
-}
-
-/* Steps 3-14..3-19: -2048 and 2047 (or anything beyond) mean saturation */
-bool as9888_acc_saturated(s16 a)
-{
-	return a <= AS9888_ACC_MIN || a >= AS9888_ACC_MAX;
 }
 
 /* Steps 3-20..3-22: the spread of the averaged samples */

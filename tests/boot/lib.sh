@@ -17,12 +17,12 @@ dev() {	# the sysfs directory of the IIO device named $1, default the accelerome
 	return 1
 }
 wait_dev() { for _ in $(seq 100); do dev >/dev/null && return 0; sleep 0.2; done; return 1; }
-t_level() { awk '$1 == "t_level" { printf "%d", $3 * 1000 + ($3 < 0 ? -0.5 : 0.5) }' "$rec"; }
+# the driver's calibbias after probe is 0 0 0; a record's is not
 applied() {
 	local d
 	d=$(dev) || return 1
-	[ "$(cat "$d/in_accel_calibtemp")" = "$(t_level)" ] &&
-		[ "$(cat "$d/in_accel_z_caliboffset")" != 0.000000 ]
+	[ "$(cat "$d/in_accel_x_calibbias" "$d/in_accel_y_calibbias" \
+		"$d/in_accel_z_calibbias" | tr '\n' ' ')" != "0 0 0 " ]
 }
 wait_applied() { for _ in $(seq 150); do applied && return 0; sleep 0.2; done; return 1; }
 # rebind: the driver lets the device go and probes it again (defaults)

@@ -733,20 +733,26 @@ static void kunit_cal_from_level(void **state)
 	for (axis = 0; axis < AS9888_AXES; axis++)
 		da[axis] = ee.axis[axis].da;
 
+	/* At t_L = t_RT: calibbias = -Ot_L / St_RT * 1024, rounded */
 	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 23750, g, da,
 							  &cal), 0);
-	assert_int_equal(cal.t_mdegc, 23750);
-	assert_int_equal(cal.offset_q16[0], Q16(10));
-	assert_int_equal(cal.offset_q16[1], Q16(-20));
-	/* Ot_L = A + St(t_L) * G = 270 - 259 */
-	assert_int_equal(cal.offset_q16[2], Q16(11));
+	assert_int_equal(cal.bias[0], -39);	/* -10 * 1024 / 260 */
+	assert_int_equal(cal.bias[1], 78);	/* 20 * 1024 / 261 = 78.47 */
+	/* Ot_L = A + St(t_L) * G = 270 - 259; -11 * 1024 / 259 = -43.49 */
+	assert_int_equal(cal.bias[2], -43);
+
+	/* 10 degC above t_RT: X drifted 2.4 LSB/degC, so -14 LSB at t_RT */
+	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 33750, g, da,
+							  &cal), 0);
+	assert_int_equal(cal.bias[0], 55);	/* 14 * 1024 / 260 = 55.1 */
 
 	/* Measured one code up: the factory DAC reads one step lower */
 	da[0] = as9888_lin2dac(ee.axis[0].ga,
 			       as9888_dac2lin(ee.axis[0].ga, da[0]) + 1);
 	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 23750, g, da,
 							  &cal), 0);
-	assert_int_equal(cal.offset_q16[0], Q16(10) - 3050403);
+	/* (10 - 46.545) LSB: 36.545 * 1024 / 260 = 143.9 */
+	assert_int_equal(cal.bias[0], 144);
 
 	assert_int_equal(as9888_accel_cal_from_level(&ee, a, 90000, g, da,
 							  &cal), -ERANGE);
@@ -768,49 +774,6 @@ static void kunit_mean(void **state)
 			-EINVAL);
 }
 
-/* 6.6, D5, D6: DACopt, rint ties to even, clamping */
-struct as9888_dac_opt_case {
-	const char *name;
-	u8 ga, da, ee_gain;
-	s32 ot_l_q16;
-	int ret;
-	u8 opt;
-};
-
-static const struct as9888_dac_opt_case as9888_dac_opt_cases[] = {
-	/* lin -13 - rint(44 / 2048 * 100 = 2.148) = -15 */
-	{ "X", 0x1c, 0x0d, 28, Q16(100), 0, 15 },
-	/* polarity: lin -15 - rint(51 / 2048 * -40.2 = -1.001) = -14 */
-	{ "Y with polarity", 0x63, 0x8f, 35, -2634547, 0, 0x8e },
-	{ "tie 0.5 to 0", 0x10, 0x80, 16, Q16(32), 0, 0x80 },
-	{ "tie 1.5 to 2", 0x10, 0x80, 16, Q16(96), 0, 2 },
-	{ "tie 2.5 to 2", 0x10, 0x80, 16, Q16(160), 0, 2 },
-	{ "tie -0.5 to 0", 0x10, 0x80, 16, Q16(-32), 0, 0x80 },
-	{ "just above a tie", 0x10, 0x80, 16, Q16(32) + 1, 0, 1 },
-	{ "clamped low", 0x1c, 0x0d, 28, Q16(3000), -ERANGE, 67 },
-	{ "clamped high", 0x1c, 0xc3, 28, Q16(-3000), -ERANGE, 0x80 + 67 },
-	{ "at the limit", 0x10, 0x80, 16, Q16(-67 * 64), 0, 0x80 + 67 },
-};
-
-static void check_dac_opt(const struct as9888_dac_opt_case *c)
-{
-	u8 opt = 0;
-
-	assert_int_equal(as9888_dac_opt(c->ga, c->da, c->ee_gain,
-					     c->ot_l_q16, &opt), c->ret);
-	assert_int_equal(opt, c->opt);
-}
-
-static void kunit_dac_opt(void **state)
-{
-	const struct as9888_dac_opt_case *c;
-
-	for (c = as9888_dac_opt_cases; c < as9888_dac_opt_cases + ARRAY_SIZE(as9888_dac_opt_cases);
-	     c++)
-		check_dac_opt(c);
-}
-
-/* Steps 3-14..3-22 */
 static void kunit_accel_judgments(void **state)
 {
 	assert_true(as9888_acc_saturated(-2048));
@@ -961,7 +924,6 @@ int main(void)
 		cmocka_unit_test(kunit_uncompensate),
 		cmocka_unit_test(kunit_cal_from_level),
 		cmocka_unit_test(kunit_mean),
-		cmocka_unit_test(kunit_dac_opt),
 		cmocka_unit_test(kunit_accel_judgments),
 		cmocka_unit_test(kunit_samples),
 		cmocka_unit_test(kunit_posture),

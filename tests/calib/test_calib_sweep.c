@@ -191,16 +191,13 @@ static void sweep_dac(void **state)
  * The driver's compensated reading of one axis: every raw value at every
  * valid TMPS code (-30..85 degC), for every sensitivity coefficient, both
  * ends of the sensitivity detail, a DAC away from the factory value and a
- * calibration away from t_RT. Bar: OUT_LSB_BAR from the double reference,
+ * calibbias. Bar: OUT_LSB_BAR from the double reference,
  * and the raw value back exactly.
  */
 static void sweep_compensation(void **state)
 {
 	static const int details[] = { 0x10, 0x0f };	/* -16 and +15 */
-	static const struct { s32 offset_q16, t_mdegc; } cals[] = {
-		{ 0, 23750 },
-		{ -123 * AS9888_Q16_ONE - 4321, 31875 },
-	};
+	static const s32 biases[] = { 0, 487, -AS9888_CALIBBIAS_MAX };
 	const u8 eaga = 0x80 | 0x40 | 28, eadt = 0x38, eada = 0x0d;
 	const u8 et1 = 0x88, et2 = 0x50, eref3 = 0x15;
 	double worst = 0.0;
@@ -211,10 +208,10 @@ static void sweep_compensation(void **state)
 	for (kste = 0; kste < 8; kste++)
 	for (d = 0; d < 2; d++)
 	for (lin_shift = -20; lin_shift <= 20; lin_shift += 40)
-	for (c = 0; c < 2; c++) {
+	for (c = 0; c < ARRAY_SIZE(biases); c++) {
 		u8 ee_raw[AS9888_EEPROM_LEN] = { 0 };
 		u8 gtd = kste << 5 | details[d];
-		struct as9888_accel_cal cal = { .t_mdegc = cals[c].t_mdegc };
+		struct as9888_accel_cal cal = { };
 		struct as9888_eeprom ee;
 		double kote, ot_ref;
 		u8 da;
@@ -230,13 +227,14 @@ static void sweep_compensation(void **state)
 		ee_raw[AS9888_EE_ET1] = et1;
 		ee_raw[AS9888_EE_ET2] = et2;
 		assert_int_equal(as9888_eeprom_decode(ee_raw, &ee), 0);
-		cal.offset_q16[0] = cals[c].offset_q16;
+		cal.bias[0] = biases[c];
 
 		da = ref_lin2dac(ee.axis[0].ga,
 				 ref_dac2lin(ee.axis[0].ga, eada) + lin_shift);
 		kote = ref_kote(eaga, eadt, et1, et2);
 		/* the offset the DAC in use gives, 6.6 */
-		ot_ref = q16(cal.offset_q16[0]) +
+		ot_ref = -cal.bias[0] * (double)ee.axis[0].st_rt /
+			 AS9888_ACC_OUT_PER_G +
 			 (ref_dac2lin(ee.axis[0].ga, da) -
 			  ref_dac2lin(ee.axis[0].ga, eada)) * 2048.0 /
 			 ((eaga & 0x3f) + 16);
@@ -244,7 +242,8 @@ static void sweep_compensation(void **state)
 		for (tmps = AS9888_TMPS_MIN; tmps <= AS9888_TMPS_MAX; tmps++) {
 			double t = ref_tmps_to_degc(tmps);
 			double st = ref_sensitivity(gtd, eref3, t);
-			double ot = ref_offset(kote, ot_ref, cal.t_mdegc / 1000.0, t);
+			double ot = ref_offset(kote, ot_ref,
+					       ee.t_rt_mdegc / 1000.0, t);
 			s32 ot_q16, st_q16;
 
 			assert_int_equal(as9888_accel_correction(&ee, &cal, 0, da,
@@ -274,6 +273,58 @@ static void sweep_compensation(void **state)
 	assert_int_equal(lost, 0);
 }
 
+/*
+ * At t_RT a calibbias moves the compensated reading by exactly its value:
+ * every axis of the example EEPROM, every DAC code, every raw value. With
+ * half-way cases rounded to even instead of up, 1196 of these miss by one.
+ */
+static void sweep_bias_moves_output(void **state)
+{
+	static const u8 example[AS9888_EEPROM_LEN] = {
+		0x9a, 0x71, 0x15, 0x5c, 0x80, 0x85, 0x7b, 0x1c, 0x63, 0xa2, 0x38,
+		0xe6, 0x9c, 0x0d, 0x8f, 0x8c, 0x04, 0x65, 0xc3, 0x88, 0x50,
+	};
+	static const s32 biases[] = {
+		1, -1, 7, -300, 1024, -2047, AS9888_CALIBBIAS_MAX,
+		-AS9888_CALIBBIAS_MAX,
+	};
+	struct as9888_eeprom ee;
+	unsigned long count = 0, missed = 0;
+	unsigned int i;
+	int axis, lin, raw;
+
+	assert_int_equal(as9888_eeprom_decode(example, &ee), 0);
+	for (axis = 0; axis < AS9888_AXES; axis++)
+	for (lin = -AS9888_DAC_LIN_MAX; lin <= AS9888_DAC_LIN_MAX; lin++)
+	for (i = 0; i < ARRAY_SIZE(biases); i++) {
+		struct as9888_accel_cal cal0 = { }, cal = { };
+		u8 da = as9888_lin2dac(ee.axis[axis].ga, lin);
+		s32 ot0, st0, ot, st;
+
+		cal.bias[axis] = biases[i];
+		assert_int_equal(as9888_accel_correction(&ee, &cal0, axis, da,
+							 ee.t_rt_mdegc, &ot0,
+							 &st0), 0);
+		assert_int_equal(as9888_accel_correction(&ee, &cal, axis, da,
+							 ee.t_rt_mdegc, &ot, &st),
+				 0);
+		for (raw = AS9888_ACC_MIN + 1; raw < AS9888_ACC_MAX; raw++) {
+			s16 out0, out;
+
+			if (as9888_accel_compensate(raw, ot0, st0, &out0) ||
+			    as9888_accel_compensate(raw, ot, st, &out))
+				continue;	/* clamped */
+			count++;
+			if (out - out0 != biases[i])
+				missed++;
+		}
+	}
+	print_message("calibbias at t_RT: %lu cases, %lu not moved by exactly the calibbias\n",
+		      count, missed);
+	assert_true(count > 0);
+	assert_int_equal(missed, 0);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -281,6 +332,7 @@ int main(void)
 		cmocka_unit_test(sweep_offset),
 		cmocka_unit_test(sweep_dac),
 		cmocka_unit_test(sweep_compensation),
+		cmocka_unit_test(sweep_bias_moves_output),
 	};
 
 	return cmocka_run_group_tests_name("calib-sweep", tests, NULL, NULL);

@@ -55,14 +55,12 @@ printf 'as9888-magn\n' >"$bus/iio:device2/name"
 printf 'bmc150_accel\n' >"$sys/devices/i2c/1-0050/iio:device1/name"
 printf '\x9a\x71\x15\x5c\x80\x85\x7b\x1c\x63\xa2\x38\xe6\x9c\x0d\x8f\x8c\x04\x65\xc3\x88\x50' \
 	>"$bus/as9888-eeprom0/nvmem"
-# the driver's state after probe, but for a calibration temperature no
-# record here has (85 degC), so that applying one shows
+# the driver's state after probe, but for a calibbias no record here
+# gives (4711), so that applying one shows
 reset_attrs() {
 	for a in x y z; do
-		printf '0\n' >"$dev/in_accel_${a}_calibbias"
-		printf '0.000000\n' >"$dev/in_accel_${a}_caliboffset"
+		printf '4711\n' >"$dev/in_accel_${a}_calibbias"
 	done
-	printf '85000\n' >"$dev/in_accel_calibtemp"
 }
 reset_attrs
 export AS9888_SYSFS=$sys
@@ -76,11 +74,11 @@ sock=$work/sock
 pid=$!
 for _ in $(seq 100); do [ -S "$sock" ] && break; sleep 0.05; done
 
-# the record's t_level in millidegrees, and a level-test offset in Z
-t_level=$(awk '$1 == "t_level" { printf "%d", $3 * 1000 + ($3 < 0 ? -0.5 : 0.5) }' "$rec")
+# every axis' calibbias written
 applied() {
-	[ "$(cat "$dev/in_accel_calibtemp")" = "$t_level" ] &&
-		[ "$(cat "$dev/in_accel_z_caliboffset")" != 0.000000 ]
+	[ "$(cat "$dev/in_accel_x_calibbias")" != 4711 ] &&
+		[ "$(cat "$dev/in_accel_y_calibbias")" != 4711 ] &&
+		[ "$(cat "$dev/in_accel_z_calibbias")" != 4711 ]
 }
 wait_applied() {
 	for _ in $(seq 200); do applied && return 0; sleep 0.01; done
@@ -98,7 +96,11 @@ wait_applied; rc=$?
 t1=$(date +%s%N)
 check "device added (module reload): calibration applied without being asked" test $rc -eq 0
 echo "# appearance to calibration applied: $(sed -n 's/.*applied to .*iio:device0 in \([0-9]*\) us/\1/p' "$work/log" | tail -1) us in the daemon, $(( (t1 - t0) / 1000 )) us seen by the test (python start-up included)"
-check "calibbias set from the record's DAC" test "$(cat "$dev/in_accel_x_calibbias")" = -13
+# the default unit has no offset at 25 degC; at t_RT (23.75 degC) Kote
+# makes it -3.0, -12.3 and 5.4 LSB: about 12, 48 and -21 as calibbias
+# (-offset / St_RT * 1024), and the level test's noise gives 13, 48, -20
+check "calibbias set from the record's level test" \
+	test "$(for a in x y z; do cat "$dev/in_accel_${a}_calibbias"; echo; done | tr '\n' ' ')" = "13 48 -20 "
 
 reset_attrs
 uevent "bind@/devices/i2c/1-000c" "ACTION=bind" "DEVPATH=/devices/i2c/1-000c" \

@@ -62,10 +62,9 @@ void fake_mkdir(const char *dir, const char *sub)
 
 void fake_reset_calibration(const struct fake_sysfs *f)
 {
-	fake_put(f->dev, "in_accel_x_caliboffset", "0.000000\n");
-	fake_put(f->dev, "in_accel_y_caliboffset", "0.000000\n");
-	fake_put(f->dev, "in_accel_z_caliboffset", "0.000000\n");
-	fake_put(f->dev, "in_accel_calibtemp", "23750\n");
+	fake_put(f->dev, "in_accel_x_calibbias", "0\n");
+	fake_put(f->dev, "in_accel_y_calibbias", "0\n");
+	fake_put(f->dev, "in_accel_z_calibbias", "0\n");
 }
 
 /* iio:device@n of the bus device 1-000c, named @name, with its bus link */
@@ -118,9 +117,6 @@ int fake_sysfs_setup(void **state)
 	fake_mkdir(f->root, "bus/iio/devices");
 	add_iio_device(f, 0, "as9888-accel", f->dev, sizeof(f->dev));
 	add_iio_device(f, 1, "as9888-magn", f->magn, sizeof(f->magn));
-	fake_put(f->dev, "in_accel_x_calibbias", "0\n");
-	fake_put(f->dev, "in_accel_y_calibbias", "0\n");
-	fake_put(f->dev, "in_accel_z_calibbias", "0\n");
 	fake_reset_calibration(f);
 	snprintf(path, sizeof(path), "%s/devices/i2c/1-000c/as9888-eeprom0",
 		 f->root);

@@ -29,17 +29,16 @@ static const uint8_t tmps_codes[] = { 0x28, 0x58, 0x88, 0xb8, 0xe0 };
 /* The DAC in use, in linear codes away from the factory value */
 static const int dac_moved[AS9888_AXES] = { 9, -7, 20 };
 
-/* The example chip, calibrated at 25 degC, DAC moved from the factory's */
+/* The example chip with a calibbias, DAC moved from the factory's */
 static void make_comp(struct accel_comp *c)
 {
 	int axis;
 
 	memset(c, 0, sizeof(*c));
 	assert_int_equal(as9888_eeprom_decode(example, &c->ee), 0);
-	c->cal.offset_q16[0] = -813056;		/* -12.40625 LSB */
-	c->cal.offset_q16[1] = 35 * 65536 + 32768;
-	c->cal.offset_q16[2] = -150 * 65536 - 16384;
-	c->cal.t_mdegc = 25000;
+	c->cal.bias[0] = 49;		/* -12.4 chip LSB at St_RT 260 */
+	c->cal.bias[1] = -139;
+	c->cal.bias[2] = 593;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		const struct as9888_axis_trim *trim = &c->ee.axis[axis];
 
@@ -140,13 +139,13 @@ static void wrong_parameters_are_visible(void **state)
 	for (axis = 0; axis < AS9888_AXES; axis++)
 		wrong.da[axis] = wrong.ee.axis[axis].da;
 	assert_int_equal(misrecovered(&wrong, 0), 256);
-	/* the calibration's temperature (0x88) instead of the sample's (0xb8) */
+	/* another temperature (0x88) instead of the sample's (0xb8) */
 	make_comp(&wrong);
 	assert_int_equal(misrecovered(&wrong, 0x88 - 0xb8), 256);
 	/* one TMPS code off */
 	assert_true(misrecovered(&wrong, 1) > 0);
 	/* another offset */
-	wrong.cal.offset_q16[1] += 65536;
+	wrong.cal.bias[1] += 8;		/* two chip LSB */
 	assert_int_equal(misrecovered(&wrong, 0), 256);
 }
 
@@ -168,44 +167,74 @@ static void refused(const struct accel_comp *c, const int16_t out[AS9888_AXES],
 
 static void saturated_sample_refused(void **state)
 {
+	static const int16_t raw[AS9888_AXES] = { 100, 200, 300 };
 	struct accel_comp c;
-	int16_t top[AS9888_AXES] = { 100, 200, AS9888_ACC_OUT_MAX };
-	int16_t bottom[AS9888_AXES] = { AS9888_ACC_OUT_MIN, 200, 300 };
-	int16_t out[AS9888_AXES] = { 0, 200, 300 };
-	int32_t ot, st;
+	int16_t top[AS9888_AXES], bottom[AS9888_AXES];
+
+	int16_t got[AS9888_AXES];
+	char why[256];
+
+	/*
+	 * the driver pushes a chip reading at its rail as the output's limit:
+	 * it comes back as that rail, for the note's saturation judgment
+	 */
+	make_comp(&c);
+	compensate(&c, raw, 0x88, top);
+	compensate(&c, raw, 0x88, bottom);
+	top[2] = AS9888_ACC_OUT_MAX;
+	bottom[0] = AS9888_ACC_OUT_MIN;
+	assert_int_equal(accel_raw_recover(&c, top, 0x88, got, why, sizeof(why)), 0);
+	assert_int_equal(got[0], raw[0]);
+	assert_int_equal(got[1], raw[1]);
+	assert_int_equal(got[2], AS9888_ACC_MAX);
+	assert_int_equal(accel_raw_recover(&c, bottom, 0x88, got, why, sizeof(why)), 0);
+	assert_int_equal(got[0], AS9888_ACC_MIN);
+	assert_int_equal(got[2], raw[2]);
+}
+
+/*
+ * The inverse is the daemon's own: a value the driver's compensation (as
+ * this daemon computes it) does not give is refused, not taken back
+ */
+static void other_rounding_refused(void **state)
+{
+	struct accel_comp c;
+	int16_t raw[AS9888_AXES] = { 100, -200, 300 }, out[AS9888_AXES];
+	int16_t got[AS9888_AXES];
+	char why[256];
 
 	make_comp(&c);
-	refused(&c, top, -ERANGE, "Z reads 32767, the limit of the driver's output");
-	refused(&c, top, -ERANGE, "saturated");
-	refused(&c, bottom, -ERANGE, "X reads -32768");
-
-	/* as it happens: the largest offset the driver takes clamps -2048 */
-	c.cal.offset_q16[0] = AS9888_CAL_OFFSET_MAX_Q16;
-	assert_int_equal(as9888_accel_correction(&c.ee, &c.cal, 0, c.da[0],
-						 25000, &ot, &st), 0);
-	assert_int_equal(as9888_accel_compensate(AS9888_ACC_MIN, ot, st, &out[0]),
-			 -ERANGE);
-	assert_int_equal(out[0], AS9888_ACC_OUT_MIN);
-	refused(&c, out, -ERANGE, "saturated");
+	compensate(&c, raw, 0x88, out);
+	assert_int_equal(accel_raw_recover(&c, out, 0x88, got, why, sizeof(why)), 0);
+	assert_memory_equal(got, raw, sizeof(raw));
+	/* one output LSB more is a quarter chip LSB: rounds back to 300 */
+	out[2]++;
+	refused(&c, out, -ERANGE, "Z reads");
+	refused(&c, out, -ERANGE, "the driver does not compensate as this daemon does");
 }
 
 static void impossible_sample_refused(void **state)
 {
+	static const int16_t raw[AS9888_AXES] = { 0, 0, 0 };
 	struct accel_comp c;
-	int16_t out[AS9888_AXES] = { 0, 32000, 0 };
+	int16_t out[AS9888_AXES];
 
 	/* 32000 / 1024 g is about 7800 raw LSB: no chip gives it */
 	make_comp(&c);
+	compensate(&c, raw, 0x88, out);
+	out[1] = 32000;
 	refused(&c, out, -ERANGE, "Y reads 32000, which no chip reading gives");
 }
 
 static void uncomputable_correction_refused(void **state)
 {
+	static const int16_t raw[AS9888_AXES] = { 0, 0, 0 };
 	struct accel_comp c;
-	int16_t out[AS9888_AXES] = { 0, 0, 0 };
+	int16_t out[AS9888_AXES];
 
 	make_comp(&c);
-	c.cal.offset_q16[1] = AS9888_CAL_OFFSET_MAX_Q16 + 1;
+	compensate(&c, raw, 0x88, out);
+	c.cal.bias[1] = AS9888_CALIBBIAS_MAX + 1;
 	refused(&c, out, -EINVAL, "Y: no offset/sensitivity at TMPS 0x88");
 }
 
@@ -215,6 +244,7 @@ int main(void)
 		cmocka_unit_test(every_raw_value_comes_back),
 		cmocka_unit_test(wrong_parameters_are_visible),
 		cmocka_unit_test(saturated_sample_refused),
+		cmocka_unit_test(other_rounding_refused),
 		cmocka_unit_test(impossible_sample_refused),
 		cmocka_unit_test(uncomputable_correction_refused),
 	};

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * The driver's attribute values as text (iio_value.h): Q16 offsets as
- * decimals with six places round-trip exactly (negative values above -1
- * included), integers, the self-test verdict and readings; anything
- * malformed or out of range is refused whole with its own error.
+ * The driver's attribute values as text (iio_value.h): integers, the
+ * self-test verdict and readings; anything malformed or out of range is
+ * refused whole with its own error.
  */
 #include <errno.h>
 #include <math.h>
@@ -20,119 +19,6 @@
 #include "iio_value.h"
 
 #define ARRAY_LEN(a)	(sizeof(a) / sizeof((a)[0]))
-
-static void q16_text(int32_t q16, const char *want)
-{
-	char buf[IIO_Q16_TEXT_MAX];
-
-	assert_int_equal(iio_q16_format(q16, buf, sizeof(buf)), 0);
-	assert_string_equal(buf, want);
-}
-
-static void q16_format_examples(void **state)
-{
-	q16_text(0, "0.000000");
-	/* between -1 and 0 the sign is still there */
-	q16_text(-1, "-0.000015");
-	q16_text(-32768, "-0.500000");
-	q16_text(-65535, "-0.999985");
-	q16_text(1, "0.000015");
-	q16_text(-65536, "-1.000000");
-	q16_text(-813056, "-12.406250");
-	q16_text(-813057, "-12.406265");
-	q16_text(AS9888_CAL_OFFSET_MAX_Q16, "8192.000000");
-	q16_text(INT32_MIN, "-32768.000000");
-	q16_text(INT32_MAX, "32767.999985");
-}
-
-static void q16_format_small_buffer(void **state)
-{
-	char buf[9];
-
-	assert_int_equal(iio_q16_format(-813056, buf, sizeof(buf)), -ENOSPC);
-	assert_int_equal(iio_q16_format(0, buf, sizeof(buf) - 1), -ENOSPC);
-	assert_int_equal(iio_q16_format(0, buf, sizeof(buf)), 0);
-	assert_string_equal(buf, "0.000000");
-}
-
-/*
- * parse(format(q)) == q, and the text says q in its own right: its sign,
- * and its value within half a millionth
- */
-static void q16_round_trip_one(int32_t q)
-{
-	char buf[IIO_Q16_TEXT_MAX];
-	int32_t back = ~q;
-
-	assert_int_equal(iio_q16_format(q, buf, sizeof(buf)), 0);
-	if (iio_q16_parse(buf, &back) || back != q)
-		fail_msg("%d -> \"%s\" -> %d", q, buf, back);
-	if ((q < 0) != (buf[0] == '-') ||
-	    fabs(strtod(buf, NULL) - q / 65536.0) > 0.5e-6 + 1e-12)
-		fail_msg("%d printed as \"%s\"", q, buf);
-	assert_int_equal(strlen(strchr(buf, '.') + 1), 6);
-}
-
-static void q16_round_trip(void **state)
-{
-	int64_t q;
-
-	/* every value within +-4 LSB, then the whole s32 range in steps */
-	for (q = -(4 << 16); q <= 4 << 16; q++)
-		q16_round_trip_one((int32_t)q);
-	for (q = INT32_MIN; q <= INT32_MAX; q += 9973)
-		q16_round_trip_one((int32_t)q);
-	q16_round_trip_one(INT32_MIN);
-	q16_round_trip_one(INT32_MAX);
-	q16_round_trip_one(AS9888_CAL_OFFSET_MAX_Q16);
-	q16_round_trip_one(-AS9888_CAL_OFFSET_MAX_Q16);
-}
-
-static void q16_parse_accepts(void **state)
-{
-	static const struct { const char *s; int32_t q16; } ok[] = {
-		{ "3", 3 << 16 }, { "0.5", 32768 }, { "-0.5", -32768 },
-		{ "-0", 0 }, { "0.000000", 0 }, { "-0.000015", -1 },
-		{ "12.40625", 813056 }, { "-12.406250", -813056 },
-		{ "007", 7 << 16 }, { "8192.000000", AS9888_CAL_OFFSET_MAX_Q16 },
-		{ "-32768", INT32_MIN },
-	};
-	size_t i;
-
-	for (i = 0; i < ARRAY_LEN(ok); i++) {
-		int32_t q = 0x5a5a;
-
-		if (iio_q16_parse(ok[i].s, &q) || q != ok[i].q16)
-			fail_msg("\"%s\" gave %d, not %d", ok[i].s, q, ok[i].q16);
-	}
-}
-
-static void q16_parse_refuses(void **state)
-{
-	static const char *const malformed[] = {
-		"", "abc", "1.2.3", "-", ".", "1.", ".5", "-.5", "1.1234567",
-		" 1", "1 ", "1\n", "+1", "--1", "-+1", "0x10", "1e3", "nan",
-		"inf", "-inf", "1,5", "1.-5", "1..0", "12a", "a12", "\t0",
-		"99999999999 ", "1.000000x",
-	};
-	static const char *const out_of_range[] = {
-		"99999999999", "-99999999999", "32768", "-32768.000008",
-		"32767.999993", "999999999999999999999999999999",
-		"-999999999999999999999999999999.5",
-	};
-	int32_t q = 4242;
-	size_t i;
-
-	for (i = 0; i < ARRAY_LEN(malformed); i++)
-		if (iio_q16_parse(malformed[i], &q) != -EINVAL)
-			fail_msg("\"%s\" not refused as malformed", malformed[i]);
-	for (i = 0; i < ARRAY_LEN(out_of_range); i++)
-		if (iio_q16_parse(out_of_range[i], &q) != -ERANGE)
-			fail_msg("\"%s\" not refused as out of range",
-				 out_of_range[i]);
-	/* nothing half-parsed */
-	assert_int_equal(q, 4242);
-}
 
 static void int_parse(void **state)
 {
@@ -171,8 +57,8 @@ static void errors_say_why(void **state)
 static void parsers_survive_garbage(void **state)
 {
 	static const char alphabet[] = "0123456789-.. x";
-	char s[24], buf[IIO_Q16_TEXT_MAX];
-	int32_t q, adj[AS9888_AXES];
+	char s[24];
+	int32_t adj[AS9888_AXES];
 	enum iio_selftest_verdict verdict;
 	unsigned int seed = 1, i, len, k;
 	long v;
@@ -182,11 +68,6 @@ static void parsers_survive_garbage(void **state)
 		for (k = 0; k < len; k++)
 			s[k] = alphabet[rand_r(&seed) % (sizeof(alphabet) - 1)];
 		s[len] = '\0';
-		if (!iio_q16_parse(s, &q)) {
-			/* a decimal: its value within half a Q16 step */
-			assert_true(fabs(strtod(s, NULL) * 65536.0 - q) <= 0.5);
-			assert_int_equal(iio_q16_format(q, buf, sizeof(buf)), 0);
-		}
 		if (!iio_int_parse(s, -100, 100, &v))
 			assert_true(strtol(s, NULL, 10) == v);
 		iio_parse_selftest_verdict(s, &verdict);
@@ -263,11 +144,6 @@ static void selftest_readings_refused(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(q16_format_examples),
-		cmocka_unit_test(q16_format_small_buffer),
-		cmocka_unit_test(q16_round_trip),
-		cmocka_unit_test(q16_parse_accepts),
-		cmocka_unit_test(q16_parse_refuses),
 		cmocka_unit_test(int_parse),
 		cmocka_unit_test(errors_say_why),
 		cmocka_unit_test(parsers_survive_garbage),

@@ -4,8 +4,8 @@
  * out like the driver's (the accelerometer's iio:deviceN with its
  * attributes, the magnetometer's iio:deviceM and the NVMEM provider beside
  * it, the bus/iio/devices symlinks) and a debugfs tree: which device is
- * found for what, what a record puts into calibbias, caliboffset and
- * calibtemp, and the driver's values the daemon refuses to read.
+ * found for what, what a record puts into calibbias, and the driver's
+ * values the daemon refuses to read.
  */
 #include <errno.h>
 #include <setjmp.h>
@@ -229,22 +229,20 @@ static void restore_applies(void **state)
 	write_record(f, "cal", fake_example_eeprom);
 	snprintf(path, sizeof(path), "%s/cal", f->root);
 	assert_int_equal(iio_restore(path, f->dev, false), 0);
-	/* X: EAXGA 0x1c, DAC 0x0f -> linear -15; Y polarity: 0x8e -> -14 */
-	expect(f, "in_accel_x_calibbias", "-15");
-	expect(f, "in_accel_y_calibbias", "-14");
-	expect(f, "in_accel_z_calibbias", "12");
 	/*
 	 * Ot_L = A + St(t_L) G with the record's DAC, moved to the factory
 	 * DAC (EAxDA 0x0d 0x8f 0x8c: linear -13 -15 12) by one DAC step per
-	 * linear code (2048 / (gain + 16) LSB):
+	 * linear code (2048 / (gain + 16) LSB), at t_L = 24.583 degC:
 	 *   X: -26214 + (-13 - -15) * 3050403 = 6074592 = 92.690918 LSB
 	 *   Y:   6553 + (-15 - -14) * 2631720 = -2625167 = -40.056870 LSB
 	 *   Z: 16914842 - St 16950406 (no DAC change) = -35564 = -0.542664 LSB
+	 * then to t_RT = 23.75 degC with Kote 2.4, 9.857, -4.286 LSB/degC
+	 * (-0.833 degC): 90.691, -48.270, 3.028 LSB; as calibbias, minus
+	 * that / St_RT (260, 261, 259) * 1024: -357.2, 189.4, -11.97
 	 */
-	expect(f, "in_accel_x_caliboffset", "92.690918");
-	expect(f, "in_accel_y_caliboffset", "-40.056870");
-	expect(f, "in_accel_z_caliboffset", "-0.542664");
-	expect(f, "in_accel_calibtemp", "24583");
+	expect(f, "in_accel_x_calibbias", "-357");
+	expect(f, "in_accel_y_calibbias", "189");
+	expect(f, "in_accel_z_calibbias", "-12");
 }
 
 static void restore_refuses_other_chip(void **state)
@@ -259,8 +257,8 @@ static void restore_refuses_other_chip(void **state)
 	write_record(f, "other", other);
 	snprintf(path, sizeof(path), "%s/other", f->root);
 	assert_int_equal(iio_restore(path, f->dev, false), -ENODEV);
-	expect(f, "in_accel_x_caliboffset", "0.000000\n");
-	expect(f, "in_accel_calibtemp", "23750\n");
+	expect(f, "in_accel_x_calibbias", "0\n");
+	expect(f, "in_accel_y_calibbias", "0\n");
 }
 
 /*
@@ -276,10 +274,10 @@ static void restore_refuses_simulated_record(void **state)
 	write_record_from(f, "sim", fake_example_eeprom, true);
 	snprintf(path, sizeof(path), "%s/sim", f->root);
 	assert_int_equal(iio_restore(path, f->dev, false), -EPERM);
-	expect(f, "in_accel_x_caliboffset", "0.000000\n");
-	expect(f, "in_accel_calibtemp", "23750\n");
+	expect(f, "in_accel_x_calibbias", "0\n");
+	expect(f, "in_accel_y_calibbias", "0\n");
 	assert_int_equal(iio_restore(path, f->dev, true), 0);
-	expect(f, "in_accel_calibtemp", "24583");
+	expect(f, "in_accel_x_calibbias", "-357");
 }
 
 /* A record whose level data give no calibration changes nothing */
@@ -290,11 +288,10 @@ static void apply_refuses_uncomputable_record(void **state)
 
 	memcpy(rec.eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
 	fake_reset_calibration(f);
-	fake_put(f->dev, "in_accel_x_calibbias", "0\n");
 	rec.t_level_mdegc = 90000;
 	assert_int_equal(iio_apply_record(f->dev, &rec), -ERANGE);
 	expect(f, "in_accel_x_calibbias", "0\n");
-	expect(f, "in_accel_calibtemp", "23750\n");
+	expect(f, "in_accel_z_calibbias", "0\n");
 }
 
 /* A calibration attribute that cannot be written fails the apply */
@@ -305,7 +302,7 @@ static void apply_reports_write_failure(void **state)
 	char path[1024];
 
 	memcpy(rec.eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
-	snprintf(path, sizeof(path), "%s/in_accel_calibtemp", f->dev);
+	snprintf(path, sizeof(path), "%s/in_accel_z_calibbias", f->dev);
 	assert_int_equal(unlink(path), 0);
 	assert_int_equal(mkdir(path, 0755), 0);
 	assert_int_equal(iio_apply_record(f->dev, &rec), -EISDIR);
@@ -321,21 +318,19 @@ static void read_calibration(void **state)
 	char err[IIO_ERR_LEN];
 
 	fake_reset_calibration(f);
-	fake_put(f->dev, "in_accel_y_caliboffset", "-0.000015\n");
-	fake_put(f->dev, "in_accel_z_caliboffset", "-8192.000000\n");
-	fake_put(f->dev, "in_accel_calibtemp", "-30000\n");
+	fake_put(f->dev, "in_accel_y_calibbias", "-1\n");
+	fake_put(f->dev, "in_accel_z_calibbias", "-8192\n");
 	assert_int_equal(iio_read_accel_cal(f->dev, &cal, err, sizeof(err)), 0);
-	assert_int_equal(cal.offset_q16[0], 0);
-	assert_int_equal(cal.offset_q16[1], -1);
-	assert_int_equal(cal.offset_q16[2], -AS9888_CAL_OFFSET_MAX_Q16);
-	assert_int_equal(cal.t_mdegc, -30000);
+	assert_int_equal(cal.bias[0], 0);
+	assert_int_equal(cal.bias[1], -1);
+	assert_int_equal(cal.bias[2], -AS9888_CALIBBIAS_MAX);
 	fake_reset_calibration(f);
 }
 
 static void refused(const struct fake_sysfs *f, const char *name,
 		    const char *value, const char *why)
 {
-	struct as9888_accel_cal cal = { .t_mdegc = 4711 };
+	struct as9888_accel_cal cal = { .bias = { 4711 } };
 	char err[IIO_ERR_LEN], quoted[64];
 
 	fake_reset_calibration(f);
@@ -347,7 +342,7 @@ static void refused(const struct fake_sysfs *f, const char *name,
 		 (int)strcspn(value, "\n"), value);
 	if (!strstr(err, quoted) || !strstr(err, why))
 		fail_msg("%s \"%s\": unclear error \"%s\"", name, value, err);
-	assert_int_equal(cal.t_mdegc, 4711);
+	assert_int_equal(cal.bias[0], 4711);
 }
 
 static void read_calibration_refuses_bad_values(void **state)
@@ -355,21 +350,17 @@ static void read_calibration_refuses_bad_values(void **state)
 	struct fake_sysfs *f = *state;
 	static const char *const malformed[] = {
 		"abc\n", "1.2.3\n", "\n", "", "-\n", "1.5 2\n", "0x10\n",
-		"1.0000001\n",
+		"1.0000001\n", "25.5\n",
 	};
 	size_t i;
 
 	for (i = 0; i < sizeof(malformed) / sizeof(malformed[0]); i++) {
-		refused(f, "in_accel_y_caliboffset", malformed[i], "malformed");
-		refused(f, "in_accel_calibtemp", malformed[i], "malformed");
+		refused(f, "in_accel_y_calibbias", malformed[i], "malformed");
+		refused(f, "in_accel_z_calibbias", malformed[i], "malformed");
 	}
-	refused(f, "in_accel_x_caliboffset", "99999999999\n", "out of range");
-	refused(f, "in_accel_z_caliboffset", "8192.000016\n", "out of range");
-	refused(f, "in_accel_z_caliboffset", "-8192.000016\n", "out of range");
-	refused(f, "in_accel_calibtemp", "99999999999\n", "out of range");
-	refused(f, "in_accel_calibtemp", "85001\n", "out of range (-30000..85000)");
-	refused(f, "in_accel_calibtemp", "-30001\n", "out of range");
-	refused(f, "in_accel_calibtemp", "25.5\n", "malformed");
+	refused(f, "in_accel_x_calibbias", "99999999999\n", "out of range");
+	refused(f, "in_accel_z_calibbias", "8193\n", "out of range (-8192..8192)");
+	refused(f, "in_accel_z_calibbias", "-8193\n", "out of range");
 	fake_reset_calibration(f);
 }
 

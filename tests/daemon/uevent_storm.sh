@@ -54,9 +54,7 @@ printf '\x9a\x71\x15\x5c\x80\x85\x7b\x1c\x63\xa2\x38\xe6\x9c\x0d\x8f\x8c\x04\x65
 	>"$bus/as9888-eeprom0/nvmem"
 for a in x y z; do
 	printf '0\n' >"$dev/in_accel_${a}_calibbias"
-	printf '0.000000\n' >"$dev/in_accel_${a}_caliboffset"
 done
-printf '85000\n' >"$dev/in_accel_calibtemp"
 export AS9888_SYSFS=$sys
 rec=$work/state/calibration
 sock=$work/sock

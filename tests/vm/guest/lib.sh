@@ -342,33 +342,92 @@ zbad() {
 G_LSB=1024
 # the scale in m/s^2 per LSB: 9.80665 / 1024
 G_SCALE=0.009576806
-# set_cal OX OY OZ [T_MDEGC]: load a calibration: the zero-g offset of each
-# axis in chip LSB as the axis reads it with its factory DAC value, at
-# T_MDEGC (default 25000). "offset = OX OY OZ" of a unit description is
-# exactly that at 25 degC: set_cal with the unit's offsets is a perfect
-# calibration.
+# The calibration is in_accel_{x,y,z}_calibbias, output LSB (1/1024 g):
+# minus the zero-g offset O at the EEPROM's reference temperature t_RT with
+# the factory DAC value, -O / St_RT * 1024. The driver applies
+# Ot(t) = Kote * (t - t_RT) + O and chooses the DAC from it.
+#
+# BIAS_AWK: awk functions over e[0..20], the EEPROM bytes: bias(i, o, t)
+# is the calibbias (unrounded) of axis i's offset o chip LSB at t degC,
+# moved to t_RT with Kote (datasheet 6.1, 6.3, 6.5, D4); trt() is t_RT
+BIAS_AWK='function s5(v) { v = v % 32; return v >= 16 ? v - 32 : v }
+	function trt() { return (176 - (136 + s5(int(e[2] / 8)))) / 1.6 }
+	function kote(i,   d, dt) { d = (e[19] - e[20]) / 1.6
+		if (e[19] < 40 || e[19] > 224 || e[20] < 40 || e[20] > 224 || d < 10 || d > 80) d = 35
+		dt = int(e[7 + i] / 128) * 256 + e[10 + i]
+		if (dt >= 256) dt -= 512
+		return dt * 1.5 / d }
+	function bias(i, o, t) { return -(o + kote(i) * (trt() - t)) / (256 + s5(e[16 + i] % 32)) * 1024 }'
+# ee_bytes: the EEPROM of the device under test, 21 decimals, from the
+# NVMEM provider beside the IIO device (both children of the bus device)
+ee_bytes() {
+	for _n in "$(readlink -f $DEV)"/../as9888-eeprom*/nvmem; do
+		od -A n -t u1 -v "$_n" | tr -s ' \n' ' '
+		break
+	done
+}
+# put_cal BX BY BZ: write the calibbias values as they are
+put_cal() {
+	echo "$1" > $DEV/in_accel_x_calibbias &&
+		echo "$2" > $DEV/in_accel_y_calibbias &&
+		echo "$3" > $DEV/in_accel_z_calibbias
+}
+# set_cal OX OY OZ [T_MDEGC]: load a calibration given as the zero-g
+# offset of each axis in chip LSB as the axis reads it with its factory DAC
+# value, at T_MDEGC (default 25000): the calibbias values that stand for
+# it, rounded. "offset = OX OY OZ" of a unit description is exactly that at
+# 25 degC: set_cal with the unit's offsets is a perfect calibration (to a
+# quarter chip LSB).
 set_cal() {
-	echo "$1" > $DEV/in_accel_x_caliboffset &&
-		echo "$2" > $DEV/in_accel_y_caliboffset &&
-		echo "$3" > $DEV/in_accel_z_caliboffset &&
-		echo "${4:-25000}" > $DEV/in_accel_calibtemp
+	put_cal $(echo "$(ee_bytes) $1 $2 $3 ${4:-25000}" | awk "$BIAS_AWK"'
+		{ for (i = 0; i < 21; i++) e[i] = $(i + 1)
+		  for (i = 0; i < 3; i++) { b = bias(i, $(22 + i), $25 / 1000)
+			printf "%d ", b < 0 ? b - 0.5 : b + 0.5 } }')
 }
-# cal_get: "OX OY OZ T_MDEGC" as the driver reads them back
+# cal_get: "BX BY BZ", the calibbias values as the driver reads them back
 cal_get() {
-	echo $(cat $DEV/in_accel_x_caliboffset $DEV/in_accel_y_caliboffset \
-		$DEV/in_accel_z_caliboffset $DEV/in_accel_calibtemp 2>&1)
+	echo $(cat $DEV/in_accel_x_calibbias $DEV/in_accel_y_calibbias \
+		$DEV/in_accel_z_calibbias 2>&1)
 }
-# cal_near NAME GOT WANT [TOL]: two cal_get lines agree, offsets within TOL
-# chip LSB (default 0.001: fixed point against a double-precision
-# reference), the temperatures exactly
+# cal_near NAME GOT WANT [TOL]: two calibrations of three values agree
+# within TOL output LSB (default 0.501: the driver's integers against the
+# unrounded double-precision reference of rec_cal)
 cal_near() {
-	if echo "$2 | $3" | awk -v t="${4:-0.001}" '{ if (NF != 9) exit 1
-		for (i = 1; i <= 3; i++) { d = $i - $(i + 5); if (d > t || d < -t) exit 1 }
-		exit !($4 == $9) }'; then
+	if echo "$2 | $3" | awk -v t="${4:-0.501}" '{ if (NF != 7) exit 1
+		for (i = 1; i <= 3; i++) { d = $i - $(i + 4); if (d > t || d < -t) exit 1 } }'; then
 		ok "$1"
 	else
 		nok "$1" "got '$2', want '$3'"
 	fi
+}
+# dac_get: the offset DAC registers AXDA..AZDA (0x37..0x39) the chip runs
+# with, through the IIO core's debugfs register access (which prints
+# "0x%X"), as "0xnn 0xnn 0xnn"
+dac_get() {
+	_d=/sys/kernel/debug/iio/${DEV##*/}/direct_reg_access
+	for _r in 0x37 0x38 0x39; do
+		echo $_r > $_d && printf '0x%02x\n' $(($(cat $_d)))
+	done | tr '\n' ' ' | sed 's/ $//'
+}
+# bias_dac "BX BY BZ": the DAC register values the driver chooses for
+# these calibbias values: the application note's DACopt (6.6, D5) for the
+# offset they stand for at t_RT, from the factory DAC, clamped; double
+# precision
+bias_dac() {
+	echo "$(ee_bytes) $1" | awk "$BIAS_AWK"'
+		function rint(x,   f) { f = int(x); if (x < 0 && f != x) f--
+			if (x - f > 0.5 || (x - f == 0.5 && f % 2)) f++; return f }
+		function lin(ga, da) { l = da >= 128 ? da - 128 : -da
+			return int(ga / 64) % 2 ? -l : l }
+		{ for (i = 0; i < 21; i++) e[i] = $(i + 1)
+		  for (i = 0; i < 3; i++) { ga = e[7 + i] % 128
+			o = -$(22 + i) * (256 + s5(e[16 + i] % 32)) / 1024
+			l = lin(ga, e[13 + i]) - rint((ga % 64 + 16) / 2048 * o)
+			if (l > 67) l = 67
+			if (l < -67) l = -67
+			if (int(ga / 64) % 2) l = -l
+			printf "%s0x%02x", i ? " " : "", (l >= 0 ? 128 + l : -l) }
+		  printf "\n" }'
 }
 # within NAME GOT WANT TOL: decimals, |GOT - WANT| <= TOL
 within() {
@@ -397,13 +456,13 @@ accel_near() {
 	fi
 }
 # rec_cal FILE: the calibration a factory record implies, as cal_get prints
-# it: Ot_L = A + St(t_L) * G per axis (datasheet 6.3-6.5), moved from the
-# record's DAC to the factory DAC (6.6: one linear code moves the output by
-# 2048 / (gain + 16) LSB), and t_L in mdegC. Double precision, independent
-# of the driver's fixed point.
+# it but unrounded: Ot_L = A + St(t_L) * G per axis (datasheet 6.3-6.5),
+# moved from the record's DAC to the factory DAC (6.6: one linear code
+# moves the output by 2048 / (gain + 16) LSB), then to t_RT with Kote, as
+# calibbias. Double precision, independent of the driver's fixed point.
 rec_cal() {
-	awk 'function h(s) { return (index("0123456789abcdef", substr(s, 1, 1)) - 1) * 16 + index("0123456789abcdef", substr(s, 2, 1)) - 1 }
-		function s5(v) { v = v % 32; return v >= 16 ? v - 32 : v }
+	awk "$BIAS_AWK"'
+		function h(s) { return (index("0123456789abcdef", substr(s, 1, 1)) - 1) * 16 + index("0123456789abcdef", substr(s, 2, 1)) - 1 }
 		function lin(ga, da) { l = da >= 128 ? da - 128 : -da
 			return int(ga / 64) % 2 ? -l : l }
 		/^eeprom = / { for (i = 0; i < 21; i++) e[i] = h($(3 + i)) }
@@ -412,17 +471,14 @@ rec_cal() {
 		/^t_level = / { tl = $3 }
 		/^gravity = / { for (i = 0; i < 3; i++) g[i] = $(3 + i) }
 		END {
-			trt = (176 - (136 + s5(int(e[2] / 8)))) / 1.6
 			for (i = 0; i < 3; i++) {
 				gtd = e[16 + i]; ga = e[7 + i] % 128
 				kste = -0.428125 + 0.04375 * int(gtd / 32)
-				st = (256 + s5(gtd % 32)) * (1 + kste / 100 * (tl - trt))
+				st = (256 + s5(gtd % 32)) * (1 + kste / 100 * (tl - trt()))
 				shift = (lin(ga, e[13 + i]) - lin(ga, da[i])) * 2048 / (ga % 64 + 16)
-				ot = a[i] + st * g[i] + shift
-				printf "%.6f ", ot
+				printf "%s%.4f", i ? " " : "", bias(i, a[i] + st * g[i] + shift, tl)
 			}
-			t = tl * 1000
-			printf "%d\n", t < 0 ? t - 0.5 : t + 0.5
+			printf "\n"
 		}' "$1"
 }
 

@@ -6,8 +6,8 @@
  * of the same measurements. Every accelerometer value, read or buffered, is
  * compensated with the offset Ot(t) and the sensitivity St(t) at the
  * temperature of its own sample (TMPS comes in the same burst), from the
- * factory EEPROM, the calibration userspace loads (caliboffset, calibtemp)
- * and the offset DAC value in use (calibbias). The values sit on one
+ * factory EEPROM, the calibration (calibbias) and the offset DAC value in
+ * use, which the driver chooses from the calibbias. The values sit on one
  * constant scale, AS9888_ACC_OUT_PER_G per g: consumers need nothing but
  * raw and scale. The device never makes the chip measure the magnetometer.
  */
@@ -15,17 +15,11 @@
 #include <linux/array_size.h>
 #include <linux/bitops.h>
 #include <linux/cleanup.h>
-#include <linux/ctype.h>
 #include <linux/device.h>
 #include <linux/err.h>
-#include <linux/kstrtox.h>
-#include <linux/math64.h>
 #include <linux/mutex.h>
 #include <linux/pm_runtime.h>
 #include <linux/regmap.h>
-#include <linux/slab.h>
-#include <linux/string.h>
-#include <linux/sysfs.h>
 #include <linux/types.h>
 
 #include <linux/iio/buffer.h>
@@ -42,10 +36,6 @@
 #define AS9888_G_NUM			980665
 #define AS9888_G_DEN			100000
 #define AS9888_ACC_SCALE_DEN		(AS9888_G_DEN * AS9888_ACC_OUT_PER_G)
-
-#define AS9888_MICRO			1000000
-/* Decimal places of in_accel_*_caliboffset */
-#define AS9888_CALIBOFFSET_PLACES	6
 
 /* ALPF quadruples the conversion time and halves the noise */
 #define AS9888_OSR_ALPF_OFF		1
@@ -92,22 +82,29 @@ struct as9888_accel {
  *
  * Offset Ot(t) and sensitivity St(t) (datasheet 6.4, 6.5) are those at the
  * temperature of the sample itself (TMPS is in the same burst), from the
- * EEPROM, the calibration and the DAC value in use, which comes from the
+ * EEPROM, the calibbias and the DAC value in use, which comes from the
  * register cache: the DAC changes only in the gap between two samples, so
- * it is the value the sample was measured with. A reading beyond the output
- * range is clamped to it.
+ * it is the value the sample was measured with.
  *
- * Return: 0 or a negative error number.
+ * Return: 0, -ERANGE when the chip's reading is at its rail (saturated) or
+ * the result is beyond the output range: @out then holds the output
+ * limit of that sign; or another negative error number.
  */
 static int as9888_accel_out(struct as9888_chip *chip,
 			    const struct as9888_raw_sample *s, int axis,
 			    s16 *out)
 {
+	s16 raw = (s16)le16_to_cpu(s->accel[axis]);
 	s32 ot_q16, st_q16;
 	unsigned int da;
 	int ret;
 
 	lockdep_assert_held(&chip->lock);
+
+	if (as9888_acc_saturated(raw)) {
+		*out = raw < 0 ? AS9888_ACC_OUT_MIN : AS9888_ACC_OUT_MAX;
+		return -ERANGE;
+	}
 
 	ret = regmap_read(chip->regmap, AS9888_REG_ADA(axis), &da);
 	if (ret)
@@ -119,49 +116,36 @@ static int as9888_accel_out(struct as9888_chip *chip,
 	if (ret)
 		return ret;
 
-	ret = as9888_accel_compensate((s16)le16_to_cpu(s->accel[axis]),
-				      ot_q16, st_q16, out);
-
-	return ret == -ERANGE ? 0 : ret;
+	return as9888_accel_compensate(raw, ot_q16, st_q16, out);
 }
 
-/* Offset DAC */
+/* Calibration */
 
 static int as9888_read_calibbias(struct as9888_chip *chip, int axis, int *val)
 {
-	unsigned int da;
-	int ret;
-
 	guard(mutex)(&chip->lock);
-
-	/* Cached register: no bus access, also fine while suspended */
-	ret = regmap_read(chip->regmap, AS9888_REG_ADA(axis), &da);
-	if (ret)
-		return ret;
-
-	*val = as9888_dac2lin(chip->ee.axis[axis].ga, da);
+	*val = chip->cal.bias[axis];
 
 	return IIO_VAL_INT;
 }
 
 /*
- * Also while a buffer runs on the data-ready trigger: the chip takes a trim
- * write in power-down only, so the value is written in the gap between two
- * samples (as9888_wait_gap()). The calibration is referred to the factory
- * DAC values, so it stays valid whatever the DAC holds, and every later
- * sample is compensated for the DAC in use. So a restore or a factory test
- * can change the DAC under a client that keeps the buffer enabled, such as
+ * The calibbias is realised as the offset DAC value that centres the chip's
+ * output (as9888_bias_dac()) and the compensation of the rest; both change
+ * together under chip->lock, so every sample is compensated for the DAC it
+ * was measured with. Also while a buffer runs on the data-ready trigger:
+ * the chip takes a trim write in power-down only, so the DAC is written in
+ * the gap between two samples (as9888_wait_gap()). So a restore can change
+ * the calibration under a client that keeps the buffer enabled, such as
  * iio-sensor-proxy.
  */
-static int as9888_write_calibbias(struct as9888_chip *chip, int axis, int lin)
+static int as9888_write_calibbias(struct as9888_chip *chip, int axis, int bias)
 {
 	u8 da;
 	int ret;
 
-	if (lin < -AS9888_DAC_LIN_MAX || lin > AS9888_DAC_LIN_MAX)
+	if (as9888_bias_dac(&chip->ee.axis[axis], bias, &da))
 		return -EINVAL;
-
-	da = as9888_lin2dac(chip->ee.axis[axis].ga, lin);
 
 	ret = pm_runtime_resume_and_get(chip->dev);
 	if (ret)
@@ -172,6 +156,8 @@ static int as9888_write_calibbias(struct as9888_chip *chip, int axis, int lin)
 		if (!ret)
 			ret = as9888_write_trim(chip, AS9888_REG_ADA(axis),
 						&da, 1);
+		if (!ret)
+			chip->cal.bias[axis] = bias;
 	}
 
 	pm_runtime_put_autosuspend(chip->dev);
@@ -271,7 +257,7 @@ static int as9888_accel_read_raw(struct iio_dev *indio_dev,
 }
 
 static const int as9888_calibbias_range[] = {
-	-AS9888_DAC_LIN_MAX, 1, AS9888_DAC_LIN_MAX
+	-AS9888_CALIBBIAS_MAX, 1, AS9888_CALIBBIAS_MAX
 };
 
 static const int as9888_oversampling_avail[] = {
@@ -342,158 +328,15 @@ static int as9888_accel_write_raw_get_fmt(struct iio_dev *indio_dev,
 	}
 }
 
-/* Extended channel attributes */
-
-static ssize_t as9888_caliboffset_read(struct iio_dev *indio_dev,
-				       uintptr_t private,
-				       const struct iio_chan_spec *chan,
-				       char *buf)
-{
-	struct as9888_chip *chip = as9888_iio_to_chip(indio_dev);
-	s64 micro;
-	u64 abs_micro;
-	u32 frac;
-
-	scoped_guard(mutex, &chip->lock)
-		micro = as9888_q16_to_micro(chip->cal.offset_q16[chan->address]);
-
-	abs_micro = micro < 0 ? -micro : micro;
-	abs_micro = div_u64_rem(abs_micro, AS9888_MICRO, &frac);
-
-	return sysfs_emit(buf, "%s%llu.%0*u\n", micro < 0 ? "-" : "",
-			  abs_micro, AS9888_CALIBOFFSET_PLACES, frac);
-}
-
-/**
- * as9888_parse_micro() - parse a decimal with up to six places
- * @buf: "[-]I[.F]", optionally followed by a newline; not NUL-terminated
- * @len: length of @buf
- * @micro: the value in millionths
- *
- * Unlike iio_str_to_fixpoint(), the integer part may not wrap around.
- *
- * Return: 0, -EINVAL when @buf is no such number, or -ENOMEM.
- */
-static int as9888_parse_micro(const char *buf, size_t len, s64 *micro)
-{
-	char *str __free(kfree) = kstrndup(buf, len, GFP_KERNEL);
-	unsigned int whole, frac = 0;
-	char *num, *dot;
-	size_t places = 0;
-	bool neg;
-
-	if (!str)
-		return -ENOMEM;
-
-	num = strim(str);
-	neg = *num == '-';
-	if (neg)
-		num++;
-
-	dot = strchr(num, '.');
-	if (dot) {
-		*dot++ = '\0';
-		for (; dot[places]; places++) {
-			if (!isdigit(dot[places]) ||
-			    places == AS9888_CALIBOFFSET_PLACES)
-				return -EINVAL;
-			frac = frac * 10 + dot[places] - '0';
-		}
-		if (!places)
-			return -EINVAL;
-	}
-
-	/* kstrtouint() would take a sign, which has been dealt with */
-	if (!isdigit(*num) || kstrtouint(num, 10, &whole))
-		return -EINVAL;
-
-	for (; places < AS9888_CALIBOFFSET_PLACES; places++)
-		frac *= 10;
-
-	*micro = (s64)whole * AS9888_MICRO + frac;
-	if (neg)
-		*micro = -*micro;
-
-	return 0;
-}
-
-static ssize_t as9888_caliboffset_write(struct iio_dev *indio_dev,
-					uintptr_t private,
-					const struct iio_chan_spec *chan,
-					const char *buf, size_t len)
-{
-	struct as9888_chip *chip = as9888_iio_to_chip(indio_dev);
-	s32 q16;
-	s64 micro;
-	int ret;
-
-	ret = as9888_parse_micro(buf, len, &micro);
-	if (ret)
-		return ret;
-
-	if (micro < -(s64)AS9888_CAL_OFFSET_MAX_LSB * AS9888_MICRO ||
-	    micro > (s64)AS9888_CAL_OFFSET_MAX_LSB * AS9888_MICRO ||
-	    as9888_micro_to_q16(micro, &q16))
-		return -EINVAL;
-
-	guard(mutex)(&chip->lock);
-	chip->cal.offset_q16[chan->address] = q16;
-
-	return len;
-}
-
-static ssize_t as9888_calibtemp_read(struct iio_dev *indio_dev,
-				     uintptr_t private,
-				     const struct iio_chan_spec *chan,
-				     char *buf)
-{
-	struct as9888_chip *chip = as9888_iio_to_chip(indio_dev);
-
-	guard(mutex)(&chip->lock);
-
-	return sysfs_emit(buf, "%d\n", chip->cal.t_mdegc);
-}
-
-/* The valid TMPS range, -30..85 degC */
-static ssize_t as9888_calibtemp_write(struct iio_dev *indio_dev,
-				      uintptr_t private,
-				      const struct iio_chan_spec *chan,
-				      const char *buf, size_t len)
-{
-	struct as9888_chip *chip = as9888_iio_to_chip(indio_dev);
-	int t_mdegc, ret;
-
-	ret = kstrtoint(buf, 10, &t_mdegc);
-	if (ret)
-		return ret;
-
-	if (t_mdegc < as9888_tmps_to_mdegc(AS9888_TMPS_MAX) ||
-	    t_mdegc > as9888_tmps_to_mdegc(AS9888_TMPS_MIN))
-		return -EINVAL;
-
-	guard(mutex)(&chip->lock);
-	chip->cal.t_mdegc = t_mdegc;
-
-	return len;
-}
-
 static const struct iio_chan_spec_ext_info as9888_accel_ext_info[] = {
 	IIO_MOUNT_MATRIX(IIO_SHARED_BY_TYPE, as9888_get_mount_matrix),
-	{
-		.name = "caliboffset",
-		.shared = IIO_SEPARATE,
-		.read = as9888_caliboffset_read,
-		.write = as9888_caliboffset_write,
-	},
-	{
-		.name = "calibtemp",
-		.shared = IIO_SHARED_BY_TYPE,
-		.read = as9888_calibtemp_read,
-		.write = as9888_calibtemp_write,
-	},
 	{ }
 };
 
+/*
+ * realbits 16: the compensated values span s16, but one chip LSB is about
+ * four of them, so the resolution is the chip's 12 bits.
+ */
 #define AS9888_ACCEL_CHANNEL(_axis) {					\
 	.type = IIO_ACCEL,						\
 	.modified = 1,							\
@@ -570,8 +413,9 @@ static bool as9888_accel_fill_scan(struct iio_dev *indio_dev,
 			*chan = s->tmps;
 			continue;
 		}
+		/* Saturated or beyond the output range: the limit is pushed */
 		ret = as9888_accel_out(chip, s, bit - AS9888_SCAN_ACCEL_X, chan);
-		if (ret) {
+		if (ret && ret != -ERANGE) {
 			dev_err_ratelimited(chip->dev,
 					    "cannot compensate a sample: %d\n",
 					    ret);

@@ -46,12 +46,13 @@
 #define AS9888_KOTE_FALLBACK_DEN	70
 #define AS9888_KOTE_NUM_MAX		(256 * AS9888_KOTE_NUM)
 #define AS9888_KOTE_DEN_MAX		(255 * AS9888_KOTE_DEN)
-#define AS9888_MICRO			1000000
 /* EAxGA[7] is bit 8 of the 9-bit offset temperature property DT */
 #define AS9888_DT_SIGN_MSK		BIT(8)
 #define AS9888_DT_LOW_MSK		GENMASK(7, 0)
-/* Largest |micro| as9888_micro_to_q16() takes: 2^31 * 10^6 / 2^16 < 2^36 */
-#define AS9888_MICRO_ABS_MAX		BIT_ULL(36)
+/* DAC rounding: (gain + 16) / 2048 * Ot_L with Ot_L in Q16 */
+#define AS9888_DAC_ROUND_DIV		BIT_ULL(27)	/* 2048 * 65536 */
+/* calibbias to Q16 raw LSB at St_RT: bias * St_RT * 2^16 / 1024 */
+#define AS9888_Q16_PER_OUT		(AS9888_Q16_ONE / AS9888_ACC_OUT_PER_G)
 
 /**
  * as9888_div_round_s64() - divide and round to nearest, ties to even
@@ -328,17 +329,104 @@ as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim, s32 ot_q16,
 EXPORT_SYMBOL_IF_KUNIT(as9888_offset_dac_shift_q16);
 
 /**
+ * as9888_dac_opt() - the optimal DAC value of step 3-23 (6.6, D5, D6)
+ * @ga: the gain register value AxGA
+ * @da: the DAC register value ADA the offset was measured with
+ * @ee_gain: EAxGA[5:0]
+ * @ot_l_q16: the offset measured with @da, Q16
+ * @da_opt: DACopt
+ *
+ * lin_opt = dac2lin(ga, da) - rint((ee_gain + 16) / 2048 * Ot_L), clamped
+ * to the DAC range.
+ *
+ * Return: 0, or -ERANGE when lin_opt had to be clamped (D6; @da_opt holds
+ * the clamped value).
+ */
+int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt)
+{
+	s64 shift, lin;
+
+	/* |(63 + 16) * Ot_L| < 2^38: exact, and the division is exact rint */
+	shift = as9888_div_round_s64(((s64)FIELD_GET(AS9888_GA_GAIN_MSK, ee_gain) +
+				      AS9888_DAC_GAIN_OFFSET) * ot_l_q16,
+				     (s64)AS9888_DAC_ROUND_DIV);
+	lin = as9888_dac2lin(ga, da) - shift;
+	*da_opt = as9888_lin2dac(ga, (int)clamp_t(s64, lin, -AS9888_DAC_LIN_MAX,
+						  AS9888_DAC_LIN_MAX));
+
+	return abs(lin) > AS9888_DAC_LIN_MAX ? -ERANGE : 0;
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_dac_opt);
+
+/**
+ * as9888_bias_offset_q16() - the zero-g offset a calibbias stands for
+ * @trim: the axis' decoded EEPROM data
+ * @bias: the calibbias, output LSB (1/AS9888_ACC_OUT_PER_G g)
+ * @ot_q16: the raw offset at t_RT with the factory DAC value, Q16
+ *
+ * At t_RT the sensitivity is St_RT exactly, so an offset O reads as
+ * O / St_RT * 1024 output LSB: @ot_q16 = -@bias * St_RT / 1024, exact.
+ *
+ * Return: 0, -EINVAL for an invalid @trim, -ERANGE for @bias beyond
+ * +-AS9888_CALIBBIAS_MAX.
+ */
+int as9888_bias_offset_q16(const struct as9888_axis_trim *trim, s32 bias,
+			   s32 *ot_q16)
+{
+	if (!as9888_trim_valid(trim))
+		return -EINVAL;
+	if (!as9888_in_range(bias, -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX))
+		return -ERANGE;
+
+	/* |8192 * 271 * 64| < 2^28 */
+	*ot_q16 = -bias * trim->st_rt * AS9888_Q16_PER_OUT;
+
+	return 0;
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_bias_offset_q16);
+
+/**
+ * as9888_bias_dac() - the offset DAC value that realises a calibbias
+ * @trim: the axis' decoded EEPROM data
+ * @bias: the calibbias, output LSB
+ * @da: the DAC register value: the application note's DACopt
+ *	(as9888_dac_opt()) for the offset @bias stands for, measured with
+ *	the factory DAC value, so that the chip's own output is centred at
+ *	t_RT; clamped to the DAC range
+ *
+ * The DAC is the coarse part of the correction, in the chip; the driver
+ * compensates the rest (as9888_accel_correction()). A clamped DAC only
+ * leaves the chip less headroom.
+ *
+ * Return: 0, -EINVAL for an invalid @trim, -ERANGE for @bias out of range.
+ */
+int as9888_bias_dac(const struct as9888_axis_trim *trim, s32 bias, u8 *da)
+{
+	s32 ot_q16;
+	int ret;
+
+	ret = as9888_bias_offset_q16(trim, bias, &ot_q16);
+	if (ret)
+		return ret;
+
+	as9888_dac_opt(trim->ga, trim->da, trim->gain, ot_q16, da);
+
+	return 0;
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_bias_dac);
+
+/**
  * as9888_accel_correction() - offset and sensitivity of one axis now
  * @ee: the decoded EEPROM
- * @cal: the loaded calibration
+ * @cal: the calibration (calibbias)
  * @axis: 0..2 for X..Z
  * @da: the DAC register value of the axis
  * @t_mdegc: the temperature of the sample
  * @ot_q16: the offset Ot(t) with @da (6.5), Q16
  * @st_q16: the sensitivity St(t) (6.4), Q16
  *
- * Ot(t) = Kote * (t - t_cal) + offset_cal, moved from the factory DAC
- * value to @da.
+ * Ot(t) = Kote * (t - t_RT) + O_bias, O_bias the offset the calibbias
+ * stands for, moved from the factory DAC value to @da.
  *
  * Return: 0, -EINVAL or -ERANGE for inputs out of range.
  */
@@ -350,14 +438,15 @@ int as9888_accel_correction(const struct as9888_eeprom *ee,
 	s32 ref_q16;
 	int ret;
 
-	if (axis < 0 || axis >= AS9888_AXES ||
-	    !as9888_in_range(cal->offset_q16[axis], -AS9888_CAL_OFFSET_MAX_Q16,
-			     AS9888_CAL_OFFSET_MAX_Q16))
+	if (axis < 0 || axis >= AS9888_AXES)
 		return -EINVAL;
 	trim = &ee->axis[axis];
 
-	ret = as9888_offset_q16(trim, cal->offset_q16[axis], cal->t_mdegc,
-				t_mdegc, &ref_q16);
+	ret = as9888_bias_offset_q16(trim, cal->bias[axis], &ref_q16);
+	if (ret)
+		return ret;
+	ret = as9888_offset_q16(trim, ref_q16, ee->t_rt_mdegc, t_mdegc,
+				&ref_q16);
 	if (ret)
 		return ret;
 	ret = as9888_offset_dac_shift_q16(trim, ref_q16, trim->da, da, ot_q16);
@@ -373,25 +462,31 @@ EXPORT_SYMBOL_IF_KUNIT(as9888_accel_correction);
  * @raw: raw accelerometer sample
  * @ot_q16: offset at the temperature of the sample, Q16
  * @st_q16: sensitivity at that temperature, Q16, > 0
- * @out: rint((raw - Ot(t)) / St(t) * AS9888_ACC_OUT_PER_G) (6.7)
+ * @out: (raw - Ot(t)) / St(t) * AS9888_ACC_OUT_PER_G (6.7), rounded to
+ *	 nearest, half-way cases up
  *
- * One output step is St(t) / AS9888_ACC_OUT_PER_G raw LSB, less than 0.4
- * at every temperature the chip reports, so as9888_accel_uncompensate()
- * gets @raw back exactly.
+ * The caller deals with a saturated @raw (as9888_acc_saturated()) first.
  *
  * Return: 0, -EINVAL for a sensitivity <= 0, or -ERANGE when the value
  * is beyond the s16 output range (@out then holds the nearer limit).
  */
 int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out)
 {
-	s64 a;
+	s64 num, a;
 
 	if (!as9888_in_range(st_q16, 1, AS9888_ST_Q16_MAX))
 		return -EINVAL;
 
-	/* |(raw * 2^16 - ot) * 1024| < 2^(16 + 32 + 10) */
-	a = as9888_div_round_s64(((s64)raw * AS9888_Q16_ONE - ot_q16) *
-				 AS9888_ACC_OUT_PER_G, st_q16);
+	/*
+	 * Half-way cases round up, so that a calibbias, an integer added to
+	 * the quotient at t_RT, moves the result by exactly its value:
+	 * floor((2 * num + st) / (2 * st)), |2 * num + st| < 2^60.
+	 */
+	num = 2 * ((s64)raw * AS9888_Q16_ONE - ot_q16) * AS9888_ACC_OUT_PER_G +
+	      st_q16;
+	a = div64_s64(num, 2 * (s64)st_q16);
+	if (a * 2 * st_q16 > num)
+		a--;
 	*out = (s16)clamp_t(s64, a, AS9888_ACC_OUT_MIN, AS9888_ACC_OUT_MAX);
 
 	return as9888_in_range(a, AS9888_ACC_OUT_MIN, AS9888_ACC_OUT_MAX) ?
@@ -399,46 +494,12 @@ int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out)
 }
 EXPORT_SYMBOL_IF_KUNIT(as9888_accel_compensate);
 
-/**
- * as9888_q16_to_micro() - a Q16 value in millionths, rounded to nearest
- * @q16: the value
- *
- * A millionth is finer than 2^-16, so as9888_micro_to_q16() gets @q16
- * back exactly: this is how Q16 values cross sysfs.
- *
- * Return: rint(@q16 * 10^6 / 2^16).
- */
-s64 as9888_q16_to_micro(s32 q16)
+/* Steps 3-14..3-19: -2048 and 2047 (or anything beyond) mean saturation */
+bool as9888_acc_saturated(s16 a)
 {
-	return as9888_div_round_s64((s64)q16 * AS9888_MICRO, AS9888_Q16_ONE);
+	return a <= AS9888_ACC_MIN || a >= AS9888_ACC_MAX;
 }
-EXPORT_SYMBOL_IF_KUNIT(as9888_q16_to_micro);
-
-/**
- * as9888_micro_to_q16() - millionths to Q16, rounded to nearest
- * @micro: the value in millionths
- * @q16: rint(@micro * 2^16 / 10^6)
- *
- * Return: 0, or -ERANGE when the value does not fit in Q16.
- */
-int as9888_micro_to_q16(s64 micro, s32 *q16)
-{
-	s64 q;
-
-	/* |micro| <= 2^36 keeps the product in range */
-	if (!as9888_in_range(micro, -(s64)AS9888_MICRO_ABS_MAX,
-			     AS9888_MICRO_ABS_MAX))
-		return -ERANGE;
-
-	q = as9888_div_round_s64(micro * AS9888_Q16_ONE, AS9888_MICRO);
-	if (!as9888_in_range(q, S32_MIN, S32_MAX))
-		return -ERANGE;
-
-	*q16 = (s32)q;
-
-	return 0;
-}
-EXPORT_SYMBOL_IF_KUNIT(as9888_micro_to_q16);
+EXPORT_SYMBOL_IF_KUNIT(as9888_acc_saturated);
 
 static void as9888_decode_axis(const u8 *raw, int axis,
 			       struct as9888_axis_trim *trim)

@@ -194,36 +194,40 @@ bool as9888_selftest_ok(int axis, s16 h, u8 ehc);
 #define AS9888_ACC_OUT_PER_G		1024
 #define AS9888_ACC_OUT_MIN		(-32768)
 #define AS9888_ACC_OUT_MAX		32767
-/* Largest calibration offset accepted, raw LSB (Q16: +-2^29) */
-#define AS9888_CAL_OFFSET_MAX_LSB	8192
-#define AS9888_CAL_OFFSET_MAX_Q16	(AS9888_CAL_OFFSET_MAX_LSB * AS9888_Q16_ONE)
+/* The chip's own accelerometer output; -2048 and 2047 mean saturation */
+#define AS9888_ACC_MIN			(-2048)
+#define AS9888_ACC_MAX			2047
+/*
+ * Largest |calibbias|, output LSB: 8 g, the chip's whole range (2048 raw
+ * LSB at about 256 LSB/g). The offset it stands for, bias * St_RT * 64 in
+ * Q16, stays below 2^28.
+ */
+#define AS9888_CALIBBIAS_MAX		(8 * AS9888_ACC_OUT_PER_G)
 
 /**
  * struct as9888_accel_cal - the accelerometer calibration
- * @offset_q16:	offset per axis at @t_mdegc, Q16 raw LSB, as the axis reads
- *		it with its factory DAC value (EAxDA); the DAC value in use
- *		is accounted for when the offset is applied
- * @t_mdegc:	the temperature of @offset_q16 (t_L of a level test)
- *
- * Without a level test: zero offsets at t_RT, the factory's state.
+ * @bias:	in_accel_{x,y,z}_calibbias, output LSB (1/1024 g) at the
+ *		EEPROM's reference temperature t_RT: minus the axis' zero-g
+ *		offset there with its factory DAC value (EAxDA). All zero
+ *		(the state after probe) is the factory's state.
  */
 struct as9888_accel_cal {
-	s32 offset_q16[AS9888_AXES];
-	s32 t_mdegc;
+	s32 bias[AS9888_AXES];
 };
 
+int as9888_bias_offset_q16(const struct as9888_axis_trim *trim, s32 bias,
+			   s32 *ot_q16);
+int as9888_bias_dac(const struct as9888_axis_trim *trim, s32 bias, u8 *da);
 int as9888_accel_correction(const struct as9888_eeprom *ee,
 			    const struct as9888_accel_cal *cal, int axis,
 			    u8 da, s32 t_mdegc, s32 *ot_q16, s32 *st_q16);
 int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out);
-
-/* Q16 values cross sysfs as decimals with six places, exactly */
-s64 as9888_q16_to_micro(s32 q16);
-int as9888_micro_to_q16(s64 micro, s32 *q16);
+bool as9888_acc_saturated(s16 a);
 
 /* Offset DAC */
 int as9888_dac2lin(u8 ga, u8 da);
 u8 as9888_lin2dac(u8 ga, int lin);
+int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt);
 
 /* Rounding helper shared with the users of this unit */
 s64 as9888_div_round_s64(s64 num, s64 den);

@@ -498,6 +498,9 @@ static const struct as9888_comp_case as9888_comp_cases[] = {
 	{ "-1 g", -240, Q16(16), Q16(256), 0, -1024 },
 	{ "rounded up", 1, 0, Q16(260), 0, 4 },		/* 3.938 */
 	{ "rounded down", 0, Q16(1) / 2, Q16(300), 0, -2 },	/* -1.707 */
+	/* half-way cases round up: a calibbias moves the result exactly */
+	{ "2.5 up", 0, -Q16(5) / 8, Q16(256), 0, 3 },
+	{ "-1.5 up", 0, Q16(3) / 8, Q16(256), 0, -1 },
 	{ "clamped high", 2047, Q16(-2000), Q16(100), -ERANGE, 32767 },
 	{ "clamped low", -2048, Q16(2000), Q16(100), -ERANGE, -32768 },
 	{ "zero St", 1, 0, 0, -EINVAL, 0 },
@@ -524,7 +527,7 @@ static void as9888_test_compensate(struct kunit *test)
 /* Offset and sensitivity of an axis now, on the example EEPROM's X axis */
 static void as9888_test_correction(struct kunit *test)
 {
-	struct as9888_accel_cal cal = { .t_mdegc = 23750 };
+	struct as9888_accel_cal cal = { };
 	struct as9888_eeprom ee;
 	s32 ot, st;
 	u8 da_up;
@@ -552,47 +555,195 @@ static void as9888_test_correction(struct kunit *test)
 						      33750, &ot, &st), 0);
 	KUNIT_EXPECT_EQ(test, ot, 4623267);
 
-	/* A calibration holds at its own temperature */
-	cal.offset_q16[0] = Q16(-5);
-	cal.t_mdegc = 33750;
+	/* calibbias 1 g: an offset of -St_RT at t_RT, then Kote on top */
+	cal.bias[0] = AS9888_ACC_OUT_PER_G;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
+						      ee.axis[0].da, 23750,
+						      &ot, &st), 0);
+	KUNIT_EXPECT_EQ(test, ot, Q16(-260));
 	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
 						      ee.axis[0].da, 33750,
 						      &ot, &st), 0);
-	KUNIT_EXPECT_EQ(test, ot, Q16(-5));
+	KUNIT_EXPECT_EQ(test, ot, Q16(-260 + 24));
 
-	cal.offset_q16[0] = AS9888_CAL_OFFSET_MAX_Q16 + 1;
+	cal.bias[0] = AS9888_CALIBBIAS_MAX + 1;
 	KUNIT_EXPECT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
 						      ee.axis[0].da, 33750,
-						      &ot, &st), -EINVAL);
+						      &ot, &st), -ERANGE);
+	cal.bias[0] = 0;
 	KUNIT_EXPECT_EQ(test, as9888_accel_correction(&ee, &cal, 3,
 						      ee.axis[0].da, 33750,
 						      &ot, &st), -EINVAL);
 }
 
-/* Q16 crosses sysfs as a decimal with six places, exactly */
-static void as9888_test_micro(struct kunit *test)
+/*
+ * At t_RT a calibbias moves the compensated reading by exactly its value,
+ * for every raw reading and every DAC value; elsewhere by bias * St_RT /
+ * St(t) before rounding, as an offset in the chip does.
+ */
+static void as9888_test_bias_moves_output(struct kunit *test)
 {
-	s64 x;
-	s32 q;
+	static const s32 biases[] = {
+		1, -1, 7, -300, 1024, -2047, AS9888_CALIBBIAS_MAX,
+		-AS9888_CALIBBIAS_MAX,
+	};
+	struct as9888_accel_cal cal = { };
+	struct as9888_eeprom ee;
+	s32 ot0, ot, st0, st;
+	s16 out0, out;
+	unsigned int i;
+	int raw, lin;
+	u8 da;
 
-	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(1), 15);
-	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(-1), -15);
-	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(Q16(1)), 1000000);
-	KUNIT_EXPECT_EQ(test, as9888_q16_to_micro(Q16(-12) - Q16(1) / 2),
-			-12500000);
-
-	for (x = S32_MIN; x <= S32_MAX; x += 65521) {
-		KUNIT_ASSERT_EQ(test, as9888_micro_to_q16(as9888_q16_to_micro(x),
-							  &q), 0);
-		KUNIT_ASSERT_EQ(test, q, x);
+	as9888_decode_example(test, &ee);
+	for (lin = -AS9888_DAC_LIN_MAX; lin <= AS9888_DAC_LIN_MAX; lin += 19) {
+		da = as9888_lin2dac(ee.axis[1].ga, lin);
+		for (i = 0; i < ARRAY_SIZE(biases); i++) {
+			cal.bias[1] = 0;
+			KUNIT_ASSERT_EQ(test,
+					as9888_accel_correction(&ee, &cal, 1, da,
+								ee.t_rt_mdegc,
+								&ot0, &st0), 0);
+			cal.bias[1] = biases[i];
+			KUNIT_ASSERT_EQ(test,
+					as9888_accel_correction(&ee, &cal, 1, da,
+								ee.t_rt_mdegc,
+								&ot, &st), 0);
+			KUNIT_ASSERT_EQ(test, st, st0);
+			for (raw = AS9888_ACC_MIN + 1; raw < AS9888_ACC_MAX;
+			     raw += 97) {
+				if (as9888_accel_compensate(raw, ot0, st0, &out0) ||
+				    as9888_accel_compensate(raw, ot, st, &out))
+					continue;
+				KUNIT_ASSERT_EQ(test, out - out0, biases[i]);
+			}
+		}
 	}
-	KUNIT_ASSERT_EQ(test, as9888_micro_to_q16(as9888_q16_to_micro(S32_MAX),
-						  &q), 0);
-	KUNIT_EXPECT_EQ(test, q, S32_MAX);
 
-	/* 2^31 / 2^16 LSB does not fit */
-	KUNIT_EXPECT_EQ(test, as9888_micro_to_q16(32768000000LL, &q), -ERANGE);
-	KUNIT_EXPECT_EQ(test, as9888_micro_to_q16(1LL << 40, &q), -ERANGE);
+	/*
+	 * A half-way case: Y at DAC code -67 reads -1956, which compensates
+	 * to 518.5 exactly; 519 and 520 with the calibbias 1 (ties to even
+	 * would give 518 and 520)
+	 */
+	da = as9888_lin2dac(ee.axis[1].ga, -AS9888_DAC_LIN_MAX);
+	cal.bias[1] = 0;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 1, da,
+						      ee.t_rt_mdegc, &ot0, &st0), 0);
+	KUNIT_ASSERT_EQ(test, as9888_accel_compensate(-1956, ot0, st0, &out0), 0);
+	KUNIT_EXPECT_EQ(test, out0, 519);
+	cal.bias[1] = 1;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 1, da,
+						      ee.t_rt_mdegc, &ot, &st), 0);
+	KUNIT_ASSERT_EQ(test, as9888_accel_compensate(-1956, ot, st, &out), 0);
+	KUNIT_EXPECT_EQ(test, out, 520);
+	cal.bias[1] = 0;
+
+	/* 10 degC warmer the same offset reads St_RT / St(t) times larger */
+	cal.bias[0] = -1024;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
+						      ee.axis[0].da, 33750,
+						      &ot, &st), 0);
+	KUNIT_ASSERT_EQ(test, as9888_accel_compensate(0, ot, st, &out), 0);
+	cal.bias[0] = 0;
+	KUNIT_ASSERT_EQ(test, as9888_accel_correction(&ee, &cal, 0,
+						      ee.axis[0].da, 33750,
+						      &ot0, &st0), 0);
+	KUNIT_ASSERT_EQ(test, as9888_accel_compensate(0, ot0, st0, &out0), 0);
+	/* -1024 * 260 / 248.868 = -1069.8 */
+	KUNIT_EXPECT_EQ(test, out - out0, -1070);
+}
+
+/* The DAC that realises a calibbias: DACopt for its offset at t_RT */
+static void as9888_test_bias_dac(struct kunit *test)
+{
+	struct as9888_axis_trim trim;
+	struct as9888_eeprom ee;
+	s32 ot;
+	u8 da;
+
+	as9888_decode_example(test, &ee);
+	trim = ee.axis[0];
+
+	/* No calibbias: the factory DAC value (linear code -13) */
+	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, 0, &da), 0);
+	KUNIT_EXPECT_EQ(test, da, trim.da);
+
+	/* -367: 93.2 LSB at St_RT 260, 2.002 codes of 2048 / 44: -15 */
+	KUNIT_ASSERT_EQ(test, as9888_bias_offset_q16(&trim, -367, &ot), 0);
+	KUNIT_EXPECT_EQ(test, ot, 367 * 260 * 64);
+	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, -367, &da), 0);
+	KUNIT_EXPECT_EQ(test, da, 15);
+	/* -366 is 1.997 codes: the same; -256 (65 LSB) is 1.4: -14 */
+	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, -366, &da), 0);
+	KUNIT_EXPECT_EQ(test, da, 15);
+	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, -256, &da), 0);
+	KUNIT_EXPECT_EQ(test, da, 14);
+	/* The other way: +2 codes of offset down is linear code -11 */
+	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, 367, &da), 0);
+	KUNIT_EXPECT_EQ(test, da, 11);
+
+	/* Beyond the DAC's range the DAC is clamped, the bias still taken */
+	trim.da = AS9888_DAC_ZERO + 60;
+	KUNIT_ASSERT_EQ(test, as9888_bias_dac(&trim, AS9888_CALIBBIAS_MAX,
+					      &da), 0);
+	KUNIT_EXPECT_EQ(test, da, AS9888_DAC_POS_MAX);
+
+	KUNIT_EXPECT_EQ(test, as9888_bias_dac(&trim, AS9888_CALIBBIAS_MAX + 1,
+					      &da), -ERANGE);
+	KUNIT_EXPECT_EQ(test, as9888_bias_dac(&trim, -AS9888_CALIBBIAS_MAX - 1,
+					      &da), -ERANGE);
+	trim.st_rt = 0;
+	KUNIT_EXPECT_EQ(test, as9888_bias_dac(&trim, 0, &da), -EINVAL);
+}
+
+/* 6.6, D5, D6: DACopt, rint ties to even, clamping */
+struct as9888_dac_opt_case {
+	const char *name;
+	u8 ga, da, ee_gain;
+	s32 ot_l_q16;
+	int ret;
+	u8 opt;
+};
+
+static const struct as9888_dac_opt_case as9888_dac_opt_cases[] = {
+	/* lin -13 - rint(44 / 2048 * 100 = 2.148) = -15 */
+	{ "X", 0x1c, 0x0d, 28, Q16(100), 0, 15 },
+	/* polarity: lin -15 - rint(51 / 2048 * -40.2 = -1.001) = -14 */
+	{ "Y with polarity", 0x63, 0x8f, 35, -2634547, 0, 0x8e },
+	{ "tie 0.5 to 0", 0x10, 0x80, 16, Q16(32), 0, 0x80 },
+	{ "tie 1.5 to 2", 0x10, 0x80, 16, Q16(96), 0, 2 },
+	{ "tie 2.5 to 2", 0x10, 0x80, 16, Q16(160), 0, 2 },
+	{ "just above a tie", 0x10, 0x80, 16, Q16(32) + 1, 0, 1 },
+	{ "clamped low", 0x1c, 0x0d, 28, Q16(3000), -ERANGE, 67 },
+	{ "clamped high", 0x1c, 0xc3, 28, Q16(-3000), -ERANGE, 0x80 + 67 },
+};
+
+static void as9888_dac_opt_desc(const struct as9888_dac_opt_case *c,
+				char *desc)
+{
+	strscpy(desc, c->name, KUNIT_PARAM_DESC_SIZE);
+}
+
+KUNIT_ARRAY_PARAM(as9888_dac_opt, as9888_dac_opt_cases, as9888_dac_opt_desc);
+
+static void as9888_test_dac_opt(struct kunit *test)
+{
+	const struct as9888_dac_opt_case *c = test->param_value;
+	u8 opt = 0;
+
+	KUNIT_EXPECT_EQ(test, as9888_dac_opt(c->ga, c->da, c->ee_gain,
+					     c->ot_l_q16, &opt), c->ret);
+	KUNIT_EXPECT_EQ(test, opt, c->opt);
+}
+
+/* Steps 3-14..3-19: the chip's rails */
+static void as9888_test_acc_saturated(struct kunit *test)
+{
+	KUNIT_EXPECT_TRUE(test, as9888_acc_saturated(AS9888_ACC_MIN));
+	KUNIT_EXPECT_TRUE(test, as9888_acc_saturated(AS9888_ACC_MAX));
+	KUNIT_EXPECT_FALSE(test, as9888_acc_saturated(AS9888_ACC_MIN + 1));
+	KUNIT_EXPECT_FALSE(test, as9888_acc_saturated(AS9888_ACC_MAX - 1));
+	KUNIT_EXPECT_FALSE(test, as9888_acc_saturated(0));
 }
 
 /* 6.6: DAC register values and linear codes */
@@ -718,7 +869,10 @@ static struct kunit_case as9888_calib_test_cases[] = {
 	KUNIT_CASE_PARAM(as9888_test_offset, as9888_offset_gen_params),
 	KUNIT_CASE_PARAM(as9888_test_compensate, as9888_comp_gen_params),
 	KUNIT_CASE(as9888_test_correction),
-	KUNIT_CASE(as9888_test_micro),
+	KUNIT_CASE(as9888_test_bias_moves_output),
+	KUNIT_CASE(as9888_test_bias_dac),
+	KUNIT_CASE_PARAM(as9888_test_dac_opt, as9888_dac_opt_gen_params),
+	KUNIT_CASE(as9888_test_acc_saturated),
 	KUNIT_CASE_PARAM(as9888_test_dac, as9888_dac_gen_params),
 	KUNIT_CASE(as9888_test_dac_round_trip),
 	KUNIT_CASE(as9888_test_dac_step),

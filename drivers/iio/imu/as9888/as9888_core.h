@@ -155,8 +155,8 @@ enum as9888_sensor_id {
  * @trig_err:	the result of reading and checking @trig_sample
  * @alpf:	accelerometer low-pass filter enabled
  * @samp_freq:	sampling frequency of the data-ready trigger, Hz
- * @cal:	accelerometer calibration (caliboffset, calibtemp) applied to
- *		every accelerometer reading
+ * @cal:	accelerometer calibration (calibbias) applied to every
+ *		accelerometer reading; zero after probe
  */
 struct as9888_chip {
 	struct device *dev;

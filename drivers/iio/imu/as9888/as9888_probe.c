@@ -262,9 +262,6 @@ static int as9888_chip_init(struct as9888_chip *chip)
 	if (ret)
 		return ret;
 
-	/* Until userspace loads a level test: the factory's state */
-	chip->cal.t_mdegc = chip->ee.t_rt_mdegc;
-
 	return as9888_load_trim(chip);
 }
 

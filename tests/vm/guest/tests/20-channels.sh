@@ -15,32 +15,34 @@ near "temperature in millidegrees from (raw+offset)*scale" "$mdeg" 31250 625
 set_unit "temperature = 25" "offset = 40 -25 60" "noise = 0"
 wait_dev 5
 eq "accel scale: 9.80665 / 1024 m/s^2" "$(cat $DEV/in_accel_scale)" $G_SCALE
-# After probe: no offset, at the factory room temperature t_RT of EREF3
-# (0x15: TMPS 136 + 2 = 138, 23.75 degC)
-eq "calibration after probe: zero offsets at t_RT" "$(cal_get)" \
-	"0.000000 0.000000 0.000000 23750"
+# After probe: calibbias 0, no offset at the factory room temperature
+# t_RT of EREF3 (0x15: TMPS 136 + 2 = 138, 23.75 degC)
+eq "calibration after probe: calibbias 0 (zero offsets at t_RT)" "$(cal_get)" "0 0 0"
 # Uncalibrated, the unit's offsets show: X reads (40 - Ot(25)) / St(25) * 1024
 # with Ot(25) = Kote (2.4 LSB/degC) * (25 - 23.75) = 3 and
 # St(25) = 260 * (1 - 0.428125 / 100 * 1.25) = 258.609: 146.5
 near "uncalibrated: accel x shows the unit's offset (146.5)" "$(cat $DEV/in_accel_x_raw)" 147 1
 # A rounding of the chip's output is at most 0.5 chip LSB, i.e. 2 LSB here,
 # plus the rounding of the output: 3
-check "caliboffset and calibtemp written" set_cal 40 -25 60 25000
-eq "the calibration reads back" "$(cal_get)" "40.000000 -25.000000 60.000000 25000"
+# The unit's offsets 40 -25 60 at 25 degC are 37, -37.3, 65.4 chip LSB at
+# t_RT (Kote 2.4, 9.857, -4.286 LSB/degC): calibbias -37 / 260 * 1024 =
+# -146, 37.3 / 261 * 1024 = 146, -65.4 / 259 * 1024 = -258
+check "calibbias written" set_cal 40 -25 60 25000
+eq "the calibration reads back" "$(cal_get)" "-146 146 -258"
 near "calibrated: accel x = 0 (horizontal)" "$(cat $DEV/in_accel_x_raw)" 0 3
 near "calibrated: accel y = 0 (horizontal)" "$(cat $DEV/in_accel_y_raw)" 0 3
 near "calibrated: accel z = 1024 (vertical, up)" "$(cat $DEV/in_accel_z_raw)" 1024 3
-# caliboffset is in chip LSB: 10.5 more reads -10.5 / 258.609 * 1024 = -41.6
-echo 50.5 > $DEV/in_accel_x_caliboffset
-eq "caliboffset takes decimals" "$(cat $DEV/in_accel_x_caliboffset)" 50.500000
-near "caliboffset +10.5 chip LSB moves x by -41.6 LSB" "$(cat $DEV/in_accel_x_raw)" -42 3
-echo 40 > $DEV/in_accel_x_caliboffset
-# calibtemp: the offsets hold at that temperature, Kote moves them from
-# there: at calibtemp 35000 X's offset at 25 degC is 40 - 24, so x reads
-# 24 / 258.609 * 1024 = 95
-echo 35000 > $DEV/in_accel_calibtemp
-near "calibtemp 35 degC: x reads Kote * 10 degC (95 LSB)" "$(cat $DEV/in_accel_x_raw)" 95 3
-echo 25000 > $DEV/in_accel_calibtemp
+# calibbias is in output LSB at t_RT: 42 more is 10.66 chip LSB less
+# offset, which reads 10.66 / 258.609 * 1024 = 42.2 higher at 25 degC
+echo -104 > $DEV/in_accel_x_calibbias
+near "calibbias +42 moves x by 42.2 LSB at 25 degC" "$(cat $DEV/in_accel_x_raw)" 42 3
+echo -146 > $DEV/in_accel_x_calibbias
+# the offset follows the temperature by Kote from the EEPROM: the unit's
+# offsets given as if at 35 degC stand for 40 - 24 at 25 degC, so x reads
+# the other 24 chip LSB: 24 / 258.609 * 1024 = 95
+set_cal 40 -25 60 35000
+near "offsets given at 35 degC: x reads Kote * 10 degC (95 LSB)" "$(cat $DEV/in_accel_x_raw)" 95 3
+set_cal 40 -25 60 25000
 
 set_unit "temperature = 25" "up = 1 0 0" "offset = 0 0 0" "noise = 0"
 wait_dev 5
@@ -66,11 +68,11 @@ scan() {
 	done | sort -n | awk '{ printf "%s:%s ", $2, $1 }'
 }
 eq "as9888-accel: its attributes, no magnetometer, no selftest" "$(attrs $DEV)" \
-	"$(printf '%s\n' in_accel_calibtemp in_accel_mount_matrix in_accel_oversampling_ratio \
+	"$(printf '%s\n' in_accel_mount_matrix in_accel_oversampling_ratio \
 		in_accel_oversampling_ratio_available in_accel_scale \
-		in_accel_x_calibbias in_accel_x_calibbias_available in_accel_x_caliboffset in_accel_x_raw \
-		in_accel_y_calibbias in_accel_y_calibbias_available in_accel_y_caliboffset in_accel_y_raw \
-		in_accel_z_calibbias in_accel_z_calibbias_available in_accel_z_caliboffset in_accel_z_raw \
+		in_accel_x_calibbias in_accel_x_calibbias_available in_accel_x_raw \
+		in_accel_y_calibbias in_accel_y_calibbias_available in_accel_y_raw \
+		in_accel_z_calibbias in_accel_z_calibbias_available in_accel_z_raw \
 		in_temp_offset in_temp_raw in_temp_scale \
 		sampling_frequency sampling_frequency_available | sort | tr '\n' ' ')"
 eq "as9888-accel: scan elements accel 0-2, temp 3, timestamp 4" "$(scan $DEV)" \

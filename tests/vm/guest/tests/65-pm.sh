@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0
 # Runtime PM: the adapter switches the chip's supply off when the driver
 # runtime-suspends (registers back to their reset values); after resume
-# the DAC (calibbias), the trim and INT1EN are back in the chip and the
-# calibration (caliboffset, calibtemp) is unchanged.
+# the DAC (from calibbias), the trim and INT1EN are back in the chip and
+# the calibration (calibbias) is unchanged.
 # System sleep is tested in 66-pm-wiring (pm_test=devices with freeze).
 plan 27
 set_unit "temperature = 25" "noise = 0"
@@ -30,17 +30,21 @@ delay0=$(cat $PM/autosuspend_delay_ms)
 eq "autosuspend delay is the driver's 2000 ms" "$delay0" 2000
 hold
 
-bx=$(cat $DEV/in_accel_x_calibbias)
-bz=$(cat $DEV/in_accel_z_calibbias)
-echo $((bx + 7)) > $DEV/in_accel_x_calibbias
-echo $((bz - 5)) > $DEV/in_accel_z_calibbias
+# the unit's calibration, then 600 less on x and 400 more on z: 152 and
+# 101 chip LSB, which the driver puts into the DAC (3 and 2 codes)
 set_cal 0 0 0 25000
+c0=$(cal_get)
+bx=$(echo $c0 | cut -d' ' -f1)
+by=$(echo $c0 | cut -d' ' -f2)
+bz=$(echo $c0 | cut -d' ' -f3)
+put_cal $((bx - 600)) $by $((bz + 400))
 cal=$(cal_get)
-eq "calibration loaded" "$cal" "0.000000 0.000000 0.000000 25000"
-cb=$(cat $DEV/in_accel_x_calibbias $DEV/in_accel_y_calibbias $DEV/in_accel_z_calibbias)
+eq "calibration loaded" "$cal" "$((bx - 600)) $by $((bz + 400))"
 x0=$(cat $DEV/in_accel_x_raw)
 z0=$(cat $DEV/in_accel_z_raw)
-near "x reads 0 with the calibration and the DAC moved" "$x0" 0 3
+# -600 * St_RT / St(25) = -600 * 260 / 258.609, and half a chip LSB (2 LSB)
+# of the chip's own rounding
+near "x reads -603 with that calibration and the DAC moved" "$x0" -603 4
 po0=$(stat_get chip_power_offs)
 r0=$(regs)
 da_x=$(reg 0x37)
@@ -55,9 +59,7 @@ eq "suspended: the chip lost its DAC (AXDA at reset value 0x80)" "$(reg 0x37)" 0
 eq "suspended: the chip lost INT1EN" "$(reg 0x02)" 0x00
 # calibbias, the calibration, the scale and sampling_frequency come from
 # the driver's state: reading them does not resume the device
-eq "calibbias readable while suspended" \
-	"$(cat $DEV/in_accel_x_calibbias $DEV/in_accel_y_calibbias $DEV/in_accel_z_calibbias)" "$cb"
-eq "calibration readable while suspended" "$(cal_get)" "$cal"
+eq "calibbias readable while suspended" "$(cal_get)" "$cal"
 eq "scale readable while suspended" "$(cat $DEV/in_accel_scale)" $G_SCALE
 eq "still suspended after those reads" "$(status)" suspended
 
@@ -67,28 +69,25 @@ eq "a raw read resumes the device" "$(status)" active
 eq "after resume: every trim, DAC and INT1EN register as before the suspend" "$(regs)" "$r0"
 eq "after resume: x raw unchanged (DAC reloaded)" "$x1" "$x0"
 eq "after resume: z raw unchanged" "$(cat $DEV/in_accel_z_raw)" "$z0"
-eq "after resume: calibbias unchanged" \
-	"$(cat $DEV/in_accel_x_calibbias $DEV/in_accel_y_calibbias $DEV/in_accel_z_calibbias)" "$cb"
-eq "after resume: calibration unchanged" "$(cal_get)" "$cal"
+eq "after resume: calibbias unchanged" "$(cal_get)" "$cal"
 release
 
 # A calibbias write while suspended resumes, writes the chip, suspends again
 check "suspended again" wait_status suspended
-echo $((bx + 8)) > $DEV/in_accel_x_calibbias
-eq "calibbias written while suspended reads back" "$(cat $DEV/in_accel_x_calibbias)" $((bx + 8))
+echo $((bx - 200)) > $DEV/in_accel_x_calibbias
+eq "calibbias written while suspended reads back" "$(cat $DEV/in_accel_x_calibbias)" $((bx - 200))
 check "suspended after the write" wait_status suspended
 hold
 cat $DEV/in_temp_raw > /dev/null
 check_not "after another power cycle the chip's AXDA follows the new calibbias" \
 	test "$(reg 0x37)" = "$da_x"
-# the chip's output moved by one DAC step (46.5 chip LSB): the driver
-# accounts for it, the compensated reading stays
-near "x still compensated after the cycle with the new DAC: 0" \
-	"$(cat $DEV/in_accel_x_raw)" 0 3
+# the chip's output moved by two DAC steps (46.5 chip LSB each): the
+# driver accounts for them, x reads -200 * 260 / 258.609
+near "x compensated after the cycle with the new DAC: -201" \
+	"$(cat $DEV/in_accel_x_raw)" -201 4
 release
 
-echo "$bx" > $DEV/in_accel_x_calibbias
-echo "$bz" > $DEV/in_accel_z_calibbias
+put_cal $c0
 
 # The data-ready trigger works after a power cycle
 check "suspended before the capture" wait_status suspended

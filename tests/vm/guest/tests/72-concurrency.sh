@@ -4,7 +4,8 @@
 # (documented in Documentation/iio/as9888.rst), a second open of the
 # character device fails with EBUSY, scale and calibration reads succeed;
 # calibbias writes succeed, taken between two samples (a restore under a
-# client that holds the buffer), and the compensated samples do not move;
+# client that holds the buffer), and the samples move by the calibbias
+# written, each compensated for the DAC it was measured with;
 # the capture keeps its rate and loses no sample. (The selftest is the
 # magn device's now: beside the accel buffer it runs, 73-split.sh; under
 # the magn device's own buffer it is refused, 58-bad-input.sh.)
@@ -64,9 +65,9 @@ done
 # writes while buffering
 cb_ok=0; cb_back=0; lp_busy=0; i=0
 while [ $i -lt 3 ]; do
-	# one linear DAC code more each time, away from the end of the range:
-	# 2048 / (gain + 16) chip counts at the output each
-	cb=$((b0 + (i + 1) * (1 - 2 * (b0 > 0))))
+	# 200 more each time (about one DAC code, 2048 / (gain + 16) chip
+	# counts), away from the end of the range
+	cb=$((b0 + (i + 1) * 200 * (1 - 2 * (b0 > 0))))
 	if echo $cb 2>/tmp/cc-w.err > $DEV/in_accel_x_calibbias; then
 		cb_ok=$((cb_ok + 1))
 		[ "$(cat $DEV/in_accel_x_calibbias)" = $cb ] && cb_back=$((cb_back + 1))
@@ -110,10 +111,19 @@ check "capture: at least half of the samples 100 Hz gives while busy ($S vs $E)"
 check "capture: every measurement of the window reached the reader ($S >= $M - 2)" test $S -ge $((M - 2))
 check "capture: timestamps strictly increasing" monotonic /tmp/cc.bin
 eq "capture: every z sample 1 g (1024 +- 4)" "$(zbad /tmp/cc.bin)" 0
-# the DAC moved the chip's X output three times during the capture: each
-# sample is compensated for the DAC it was measured with
-eq "capture: every x sample 0 g (0 +- 4) across 3 DAC changes" \
-	"$(od -A n -t d2 -v /tmp/cc.bin | awk 'NF == 8 { if ($1 < -4 || $1 > 4) bad++ } END { print bad + 0 }')" 0
+# calibbias moved x three times during the capture, 200 each time, and the
+# DAC with it: 200 * St_RT / St(25) LSB a step at 25 degC (datasheet 6.4,
+# from the EEPROM). Each sample is compensated for the calibbias and DAC
+# it was measured with: x is k steps from 0 g (+- 4), k = 0..3, and k
+# never goes back
+D=$(ee_bytes | awk -v s=$((1 - 2 * (b0 > 0))) '{ r = int($3 / 8) % 32; if (r >= 16) r -= 32
+	k = -0.428125 + 0.04375 * int($17 / 32)
+	printf "%.3f", s * 200 / (1 + k / 100 * (25 - (176 - 136 - r) / 1.6)) }')
+eq "capture: every x sample k steps of $D LSB from 0 g (+- 4), k = 0..3 in order" \
+	"$(od -A n -t d2 -v /tmp/cc.bin | awk -v d="$D" 'NF == 8 { q = $1 / d; k = int(q + 0.5)
+		e = $1 - k * d; if (e < 0) e = -e
+		if (k < 0 || k > 3 || e > 4 || k < last) bad++; else last = k }
+		END { print bad + 0 }')" 0
 P=$(period_us /tmp/cc.bin)
 period_ok "capture under load at 100 Hz" "$P" 10000
 check "device usable after the capture" test -n "$(cat $DEV/in_accel_x_raw)"

@@ -2,7 +2,7 @@
 # as9888-calibd's records restored through the driver (restore --backend
 # iio). The record is made on this chip: the factory test through the
 # driver (84-daemon-iio.sh tests that test itself). After a restore,
-# caliboffset and calibtemp hold what the record implies and the
+# calibbias holds what the record implies and the
 # compensated readings are right (0 on the horizontal axes, 1 g on the
 # vertical one); also after a driver reload. Refused, with nothing applied:
 # a record of another chip, and a record of the simulator (source =
@@ -21,23 +21,23 @@ printf '%s\n' "$U" > $SIM/unit
 wait_dev 5
 CALIBD=/bin/as9888-calibd
 CAL0=$(cal_get)
-eq "no calibration after probe (zero offsets at t_RT)" "$CAL0" \
-	"0.000000 0.000000 0.000000 23750"
+eq "no calibration after probe (calibbias 0: zero offsets at t_RT)" "$CAL0" "0 0 0"
 rm -f /tmp/rec
 check "factory test of this chip through the driver writes a record" \
 	sh -c "$CALIBD factory-test --backend iio --record /tmp/rec > /tmp/ft.log 2>&1"
 tail -n 3 /tmp/ft.log | sed 's/^/# /'
-B="$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)"
+B="$(cal_get)"
+D="$(dac_get)"
 # start from the probe's state, DAC included
 dev_stale; rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
 eq "driver reload: the probe's calibration" "$(cal_get)" "$CAL0"
 check "restore --backend iio" sh -c "$CALIBD restore --backend iio --record /tmp/rec > /tmp/r.log 2>&1"
 sed 's/^/# /' /tmp/r.log
 CAL=$(cal_get)
-diag "caliboffset x y z, calibtemp: $CAL (the record implies $(rec_cal /tmp/rec))"
-cal_near "caliboffset and calibtemp = what the record implies" "$CAL" "$(rec_cal /tmp/rec)"
-eq "calibbias = the record's DAC, as the factory test left it" \
-	"$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)" "$B"
+diag "calibbias x y z: $CAL (the record implies $(rec_cal /tmp/rec))"
+cal_near "calibbias = what the record implies" "$CAL" "$(rec_cal /tmp/rec)"
+eq "calibbias as the factory test left it (it applies its record)" "$CAL" "$B"
+eq "the DAC as the factory test left it" "$(dac_get)" "$D"
 # the mean of 16 reads (noise 0.5 chip LSB = 2 LSB rms: the mean is within
 # about 1 LSB) and the rounding of the chip: within 4 LSB
 A=$(accel_mean 16)
@@ -47,14 +47,13 @@ dev_stale; rmmod as9888_i2c; insmod $MODDIR/as9888_i2c.ko; wait_dev 5
 eq "driver reload forgets the calibration" "$(cal_get)" "$CAL0"
 check "restore after the reload" sh -c "$CALIBD restore --backend iio --record /tmp/rec > /tmp/r.log 2>&1"
 eq "same calibration after reload + restore" "$(cal_get)" "$CAL"
-eq "same calibbias after reload + restore" \
-	"$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)" "$B"
+eq "same DAC after reload + restore" "$(dac_get)" "$D"
 accel_near "compensated readings after reload + restore: 0 0 1 g" "$(accel_mean 16)" "0 0 $G_LSB" 4
 
 # A record of the simulator, for the same unit: refused
 $CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt --record /tmp/rec-sim > /tmp/ft-sim.log 2>&1
 check "the simulator's record says so (source = simulator)" grep -qx "source = simulator" /tmp/rec-sim
-set_cal $CAL0
+put_cal $CAL0
 $CALIBD restore --backend iio --record /tmp/rec-sim > /tmp/r2.log 2>&1
 rc=$?
 sed 's/^/# /' /tmp/r2.log

@@ -8,7 +8,8 @@
 # it at its step with exit status 1 and no record written; restore --backend
 # raw loads the record's DAC (read back over i2c-dev); with the driver bound
 # again, restore --backend iio gives the calibration the record implies
-# (caliboffset, calibtemp) and compensated readings of 0, 0 and 1 g.
+# (calibbias, with the DAC it gives) and compensated readings of 0, 0 and
+# 1 g.
 # Leaves the driver bound.
 plan 85
 CALIBD=/bin/as9888-calibd
@@ -35,17 +36,6 @@ jfirst() {
 }
 # rec_get FILE KEY: a record line's value
 rec_get() { sed -n "s/^$2 = //p" "$1"; }
-# rec_bias FILE: the record's DAC as linear codes (6.6 dac2lin), x y z
-rec_bias() {
-	awk 'function h(s) { return index("0123456789abcdef", substr(s, 1, 1)) * 16 +
-				index("0123456789abcdef", substr(s, 2, 1)) - 17 }
-		/^eeprom = / { for (i = 0; i < 3; i++) ga[i] = h($(3 + 7 + i)) }
-		/^dac = / { for (i = 0; i < 3; i++) da[i] = h($(3 + i)) }
-		END { for (i = 0; i < 3; i++) {
-			l = da[i] >= 128 ? da[i] - 128 : -da[i]
-			if (int(ga[i] / 64) % 2) l = -l
-			printf "%s%d", i ? " " : "", l } print "" }' "$1"
-}
 # unbound: the adapter's client has no driver
 unbound() { [ ! -e "/sys/bus/i2c/devices/$CLIENT/driver" ]; }
 # same_file A B: same content and same inode (not replaced)
@@ -209,17 +199,17 @@ check "restore --backend iio of the raw record" \
 	sh -c "$CALIBD restore --backend iio --record $REC > $RD/r.log 2>&1"
 sed 's/^/# /' $RD/r.log
 CAL=$(cal_get)
-diag "caliboffset x y z, calibtemp: $CAL"
-cal_near "caliboffset and calibtemp = what the record implies" "$CAL" "$(rec_cal $REC)"
-eq "calibbias = the record's DAC (6.6 dac2lin)" \
-	"$(cat $DEV/in_accel_x_calibbias) $(cat $DEV/in_accel_y_calibbias) $(cat $DEV/in_accel_z_calibbias)" \
-	"$(rec_bias $REC)"
+diag "calibbias x y z: $CAL; the record's DACopt (at t_L) $(sed -n 's/^dac = //p' $REC), the chip's DAC $(dac_get)"
+cal_near "calibbias = what the record implies" "$CAL" "$(rec_cal $REC)"
+eq "the DAC the chip runs with: DACopt of the calibbias' offset at t_RT" \
+	"$(dac_get)" "$(bias_dac "$CAL")"
 # 80-daemon.sh's record of this unit, made through the driver: other
-# samples of the same chip, so within 1 chip LSB (noise 0.5 LSB rms)
+# samples of the same chip, so within 1 chip LSB (noise 0.5 LSB rms), 4
+# output LSB
 if [ -f /tmp/rec ]; then
 	$CALIBD restore --backend iio --record /tmp/rec > /dev/null 2>&1
 	cal_near "the iio backend's record (80-daemon.sh) within 1 chip LSB of this one" \
-		"$(cal_get)" "$CAL" 1
+		"$(cal_get)" "$CAL" 4
 	$CALIBD restore --backend iio --record $REC > /dev/null 2>&1
 else
 	plan_more -1	# (run alone: 80-daemon left no record to compare)

@@ -23,8 +23,7 @@ record_dac() { sed -n 's/^dac = //p' "$1"; }
 # state: every attribute the test may change, one line each
 state() {
 	for a in in_accel_x_calibbias in_accel_y_calibbias in_accel_z_calibbias \
-		in_accel_x_caliboffset in_accel_y_caliboffset in_accel_z_caliboffset \
-		in_accel_calibtemp in_accel_oversampling_ratio sampling_frequency \
+		in_accel_oversampling_ratio sampling_frequency \
 		trigger/current_trigger buffer/length; do
 		echo "$a=$(cat $DEV/$a)"
 	done
@@ -76,8 +75,10 @@ check "self-test judged from the driver's readings" \
 check "record written" test -s /tmp/iio/rec
 AFTER=$(state)
 CAL=$(cal_get)
-diag "caliboffset x y z, calibtemp: $CAL"
+diag "calibbias x y z: $CAL; the record's DACopt (at t_L) $(record_dac /tmp/iio/rec), the chip's DAC $(dac_get)"
 cal_near "the new calibration is in effect: what the record implies" "$CAL" "$(rec_cal /tmp/iio/rec)"
+eq "the DAC the chip runs with: DACopt of the calibbias' offset at t_RT" \
+	"$(dac_get)" "$(bias_dac "$CAL")"
 # everything but the DAC and the calibration as it was
 eq "the other attributes are as they were found" \
 	"$(echo "$AFTER" | grep -v -e calib)" \

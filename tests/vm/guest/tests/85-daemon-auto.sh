@@ -2,7 +2,7 @@
 # The long-running daemon in a real kernel: it applies the record to the
 # device present at start, and again by itself after a module reload and an
 # unbind/bind (real kernel uevents); the driver then holds the calibration
-# the record implies (caliboffset, calibtemp) and reads 0, 0 and 1 g;
+# the record implies (calibbias) and reads 0, 0 and 1 g;
 # requests work; SIGTERM stops it. Needs /tmp/rec and the unit of
 # 80-daemon.sh.
 plan 9
@@ -19,7 +19,7 @@ wait_dev 5
 $CALIBD restore --backend iio --record /tmp/rec > /dev/null 2>&1
 CAL=$(cal_get)
 cal_near "the record's calibration (restore)" "$CAL" "$(rec_cal /tmp/rec)"
-# the calibration of a fresh probe: zero offsets at t_RT
+# the calibration of a fresh probe: calibbias 0, zero offsets at t_RT
 uncal() { set_cal 0 0 0 23750; }
 # wait up to 10 s for the driver to hold the record's calibration
 wait_cal() {

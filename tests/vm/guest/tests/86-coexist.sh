@@ -29,10 +29,7 @@ $CALIBD restore --backend iio --record /tmp/rec > /dev/null 2>&1
 CAL=$(cal_get)
 DAC=$(dac)
 diag "the record: DAC $DAC, calibration $CAL"
-uncal() {
-	set_cal 0 0 0 23750
-	for a in x y z; do echo 0 > $DEV/in_accel_${a}_calibbias; done
-}
+uncal() { put_cal 0 0 0; }
 applied() { [ "$(cal_get)" = "$CAL" ] && [ "$(dac)" = "$DAC" ]; }
 # hold [COUNT]: iio_readdev on the data-ready trigger into $O/held.bin,
 # forever without COUNT; HPID; returns once the buffer is on. libiio's
