@@ -190,6 +190,21 @@ static int apply_permissible_error(struct cli_opts *o, const char *arg,
 	return 0;
 }
 
+/* note: the application note's literal order; datasheet: the faster one */
+static int apply_sequence(struct cli_opts *o, const char *arg, char *err,
+			  size_t errlen)
+{
+	if (!strcmp(arg, "note"))
+		o->ftest.note_order = true;
+	else if (!strcmp(arg, "datasheet"))
+		o->ftest.note_order = false;
+	else
+		return bad(err, errlen, "--sequence takes note or datasheet, not \"%s\"",
+			   arg);
+
+	return 0;
+}
+
 static int apply_fluctuation(struct cli_opts *o, const char *arg, char *err,
 			     size_t errlen)
 {
@@ -455,6 +470,7 @@ static const struct cli_option cli_options[] = {
 	{ "busy-timeout", true, CMDS_LEVEL, apply_busy_timeout },
 	{ "permissible-error", true, CMD(CLI_FACTORY_TEST), apply_permissible_error },
 	{ "keep-going", false, CMD(CLI_FACTORY_TEST), apply_keep_going },
+	{ "sequence", true, CMD(CLI_FACTORY_TEST), apply_sequence },
 	{ "junit", true, CMD(CLI_FACTORY_TEST), apply_junit },
 };
 

@@ -52,6 +52,12 @@
  * @measure_only:	stop after the first level run: no DAC change
  * @expect_eeprom:	refuse a chip whose EEPROM differs (NULL: any chip)
  * @apply_dac:		DAC values to load after the trims (NULL: EEPROM's)
+ * @note_order:		the application note's literal order on the register
+ *			backends: every register of a sample read before the
+ *			next MS write, t_PD before the trims, the project's
+ *			read-backs at once (default: the datasheet's order,
+ *			the bus working while the chip converts; the same
+ *			judgments)
  */
 struct ftest_opts {
 	uint32_t samples;
@@ -68,6 +74,7 @@ struct ftest_opts {
 	bool measure_only;
 	const uint8_t *expect_eeprom;
 	const uint8_t *apply_dac;
+	bool note_order;
 };
 
 void ftest_opts_default(struct ftest_opts *o);
@@ -92,6 +99,9 @@ void ftest_opts_default(struct ftest_opts *o);
  * @pilot_sigma: with a permissible error: the pilot's sigma-hat of the
  *		noisiest axis, LSB
  * @pilot_sigma_upper: its 95 % upper confidence bound, which chose N
+ * @overlap_lost: measurements lost because a stall let the next
+ *		measurement end before the last sample was read (datasheet's
+ *		order only; the run then took more)
  * @opts:	the options the test ran with
  * @started:	when it started, seconds since the epoch (UTC)
  */
@@ -111,6 +121,7 @@ struct ftest_result {
 	const char *backend;
 	double pilot_sigma;
 	double pilot_sigma_upper;
+	uint32_t overlap_lost;
 	struct ftest_opts opts;
 	int64_t started;
 };

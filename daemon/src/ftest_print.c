@@ -68,8 +68,9 @@ static void print_options(FILE *out, const struct ftest_opts *o)
 	fprintf(out, ", \"fluctuation\": %u, \"lpf\": %s, \"gravity\": ",
 		o->fluctuation, o->lpf ? "true" : "false");
 	json_string(out, g[0] ? g : NULL);
-	fprintf(out, ", \"keep_going\": %s, \"stable_timeout_ms\": %u}",
-		o->keep_going ? "true" : "false", o->stable_timeout_ms);
+	fprintf(out, ", \"keep_going\": %s, \"stable_timeout_ms\": %u, \"sequence\": \"%s\"}",
+		o->keep_going ? "true" : "false", o->stable_timeout_ms,
+		o->note_order ? "note" : "datasheet");
 }
 
 void ftest_print_json(FILE *out, const struct ftest_result *res,
@@ -121,6 +122,7 @@ void ftest_print_json(FILE *out, const struct ftest_result *res,
 			rec->lpf ? "true" : "false");
 	}
 	fprintf(out, ",\n  \"duration_ms\": %.3f", res->duration_ns / 1e6);
+	fprintf(out, ",\n  \"overlap_lost\": %u", res->overlap_lost);
 	fputs(",\n  \"record\": ", out);
 	json_string(out, stored ? record_path : NULL);
 	fputs("\n}\n", out);
