@@ -37,6 +37,7 @@ struct stalling {
 	int stall_at;
 	uint64_t stall_ns;
 	bool stall_next;
+	uint64_t every_ns;	/* before every transfer: a slow host */
 };
 
 static struct stalling *to_st(struct transport *t)
@@ -46,6 +47,7 @@ static struct stalling *to_st(struct transport *t)
 
 static void maybe_stall(struct stalling *s)
 {
+	transport_sleep_ns(s->inner, s->every_ns);
 	if (s->stall_next) {
 		s->stall_next = false;
 		transport_sleep_ns(s->inner, s->stall_ns);
@@ -114,9 +116,12 @@ static const struct transport_ops stalling_ops = {
 	.destroy = st_destroy,
 };
 
-/* Run @text with @o on a simulator, stalling as @stall_at/@stall_ns say */
-static void run(const char *text, const struct ftest_opts *o, int stall_at,
-		uint64_t stall_ns, struct ftest_result *res)
+/*
+ * Run @text with @o on a simulator, stalling as @stall_at/@stall_ns say,
+ * every transfer @every_ns late
+ */
+static void run_slow(const char *text, const struct ftest_opts *o, int stall_at,
+		     uint64_t stall_ns, uint64_t every_ns, struct ftest_result *res)
 {
 	struct as9888_unit_error uerr;
 	struct as9888_unit unit;
@@ -124,6 +129,7 @@ static void run(const char *text, const struct ftest_opts *o, int stall_at,
 		.base = { .ops = &stalling_ops, .name = "sim" },
 		.stall_at = stall_at,
 		.stall_ns = stall_ns,
+		.every_ns = every_ns,
 	};
 	char err[256];
 
@@ -135,6 +141,12 @@ static void run(const char *text, const struct ftest_opts *o, int stall_at,
 	memset(res, 0, sizeof(*res));
 	ftest_run(&st.base, o, res);
 	transport_destroy(&st.base);
+}
+
+static void run(const char *text, const struct ftest_opts *o, int stall_at,
+		uint64_t stall_ns, struct ftest_result *res)
+{
+	run_slow(text, o, stall_at, stall_ns, 0, res);
 }
 
 static void assert_same_reports(const struct ftest_result *a,
@@ -302,6 +314,85 @@ static void stall_in_step2(void **state)
 	ftest_result_free(&b);
 }
 
+/*
+ * fault = nak fails every 50th transfer: the orders make different
+ * transfers, so it hits different steps, but both end on a bus failure
+ */
+static void nak_fails_both(void **state)
+{
+	struct ftest_result res;
+	struct ftest_opts o;
+	int order;
+
+	for (order = 0; order < 2; order++) {
+		const struct judgment *j;
+
+		ftest_opts_default(&o);
+		o.note_order = order;
+		run("fault = nak\n", &o, 0, 0, &res);
+		j = report_first_failure(&res.report);
+		assert_non_null(j);
+		assert_non_null(strstr(j->measured, "bus transfer failed"));
+		assert_false(res.have_calibration);
+		print_message("nak, %s order: fails at %s\n",
+			      order ? "the note's" : "the datasheet's", j->id);
+		ftest_result_free(&res);
+	}
+}
+
+/*
+ * A slow host (every transfer 800 us late, as in an emulated guest): the
+ * self-test's cycle (MS write, 16-byte read) takes 2.1 ms, beyond 3/4 of
+ * t_ACC, so the level runs go in the note's order and lose nothing: the
+ * same record as the note's order (without the budget every overlapped
+ * read would come after the next measurement ended)
+ */
+static void slow_host_keeps_its_samples(void **state)
+{
+	struct ftest_result a, b;
+	struct ftest_opts o;
+
+	ftest_opts_default(&o);
+	run_slow("seed = 6\n", &o, 0, 0, 800 * 1000ULL, &a);
+	if (report_first_failure(&a.report)) {
+		report_print_text(stderr, &a.report);
+		fail_msg("slow host: the run failed");
+	}
+	assert_int_equal(a.overlap_lost, 0);
+	o.note_order = true;
+	run("seed = 6\n", &o, 0, 0, &b);
+	assert_same_reports(&a, &b, "slow host");
+	ftest_result_free(&a);
+	ftest_result_free(&b);
+}
+
+/*
+ * A cycle beyond the budget that still beats the conversion (0.5 ms late
+ * after an MS write: the read ends 0.94 ms into the 1.2 ms): the run reads
+ * its pending sample and goes on in the note's order, nothing lost, the
+ * same record as the note's order (a pending sample left unread would
+ * set DOR on the next one and fail 3-4)
+ */
+static void over_budget_switches(void **state)
+{
+	static const int at[] = { 4, 8, 12, 14, 20 };
+	struct ftest_result a, b;
+	struct ftest_opts o;
+	unsigned int i;
+
+	ftest_opts_default(&o);
+	o.note_order = true;
+	run("seed = 7\n", &o, 0, 0, &b);
+	for (i = 0; i < sizeof(at) / sizeof(at[0]); i++) {
+		o.note_order = false;
+		run("seed = 7\n", &o, at[i], 500 * 1000ULL, &a);
+		assert_int_equal(a.overlap_lost, 0);
+		assert_same_reports(&a, &b, "over budget");
+		ftest_result_free(&a);
+	}
+	ftest_result_free(&b);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -309,6 +400,9 @@ int main(void)
 		cmocka_unit_test(datasheet_order_is_faster),
 		cmocka_unit_test(stall_is_detected),
 		cmocka_unit_test(stall_in_step2),
+		cmocka_unit_test(nak_fails_both),
+		cmocka_unit_test(slow_host_keeps_its_samples),
+		cmocka_unit_test(over_budget_switches),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
