@@ -194,14 +194,17 @@ static const char *const units[] = {
 	"offset = 900 0 0\n",
 };
 
-/* Both orders, with and without keep-going, a pilot and the filter */
+/*
+ * Both orders, with and without keep-going, a pilot and the filter, and
+ * the field recalibration (level only)
+ */
 static void both_orders_agree(void **state)
 {
 	struct ftest_result a, b;
 	unsigned int i, variant;
 
 	for (i = 0; i < sizeof(units) / sizeof(units[0]); i++) {
-		for (variant = 0; variant < 4; variant++) {
+		for (variant = 0; variant < 8; variant++) {
 			struct ftest_opts o;
 			char name[160];
 
@@ -210,6 +213,12 @@ static void both_orders_agree(void **state)
 			if (variant & 2) {
 				o.permissible_error_q16 = 65536 / 2;
 				o.lpf = true;
+			}
+			if (variant & 4) {
+				/* a product user's recalibration: step 2 skipped */
+				o.level_only = true;
+				o.user_mode = true;
+				o.fluctuation = FTEST_USER_FLUCTUATION;
 			}
 			snprintf(name, sizeof(name), "unit \"%s\" variant %u", units[i], variant);
 			run(units[i], &o, 0, 0, &a);
