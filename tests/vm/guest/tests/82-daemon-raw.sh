@@ -119,14 +119,12 @@ check "the report has its duration" awk "BEGIN { exit !($DUR > 0 && $DUR <= $WAL
 # same samples, so the same calibration. In the datasheet's order (the
 # default) a stall of this guest can let a measurement end before the last
 # sample's overlapped read: that pair is taken again (overlap_lost), which
-# draws other noise; the note's order never loses one, so it is compared
-# always, the default's record when it lost nothing.
+# draws other noise, so level_mean is compared when nothing was lost (a
+# second raw run cannot stand in: the chip's noise generator has moved on).
 $CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt \
 	--record $RD/sim > /dev/null 2>&1
-$CALIBD factory-test $RAW --sequence note --record $RD/note > /dev/null 2>&1
-for k in dac level_mean t_level gravity samples; do
-	eq "raw record (--sequence note)'s $k = the sim backend's" \
-		"$(rec_get $RD/note $k)" "$(rec_get $RD/sim $k)"
+for k in dac t_level gravity samples; do
+	eq "raw record's $k = the sim backend's" "$(rec_get $REC $k)" "$(rec_get $RD/sim $k)"
 done
 LOST=$(jtop $RD/ft.json overlap_lost)
 diag "datasheet order on the raw backend: $LOST measurements lost to stalls"
