@@ -74,6 +74,11 @@ static const struct transport_ops sim_ops = {
 	.destroy = sim_destroy,
 };
 
+struct as9888_sim *backend_sim_get(struct transport *t)
+{
+	return t->ops == &sim_ops ? to_sim(t) : NULL;
+}
+
 int backend_sim_open_unit(const struct as9888_unit *unit, bool virtual_clock,
 			  struct transport **out, char *err, size_t errlen)
 {

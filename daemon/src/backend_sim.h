@@ -27,4 +27,8 @@ struct as9888_unit;
 int backend_sim_open_unit(const struct as9888_unit *unit, bool virtual_clock,
 			  struct transport **out, char *err, size_t errlen);
 
+struct as9888_sim;
+/* The simulator behind @t, NULL when @t is not one (for tests: its model) */
+struct as9888_sim *backend_sim_get(struct transport *t);
+
 #endif

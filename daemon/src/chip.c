@@ -93,22 +93,30 @@ static int chip_poll_drdy(struct chip *c, uint64_t deadline, bool *ready)
 	}
 }
 
-int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
-		 enum chip_wait *how)
+int chip_start(struct chip *c, uint8_t ms, uint64_t duration_us)
 {
-	struct transport *t = c->t;
-	uint64_t timeout = (duration_us + CHIP_TIMEOUT_MARGIN_US) * NS_PER_US;
-	uint64_t deadline;
-	bool ready;
 	int ret;
 
+	c->timeout_ns = (duration_us + CHIP_TIMEOUT_MARGIN_US) * NS_PER_US;
 	ret = chip_set_mode(c, ms);
 	if (ret)
 		return ret;
-	deadline = transport_now_ns(t) + timeout;
+	c->started_ns = transport_now_ns(c->t);
+
+	return 0;
+}
+
+int chip_wait(struct chip *c, enum chip_wait *how)
+{
+	struct transport *t = c->t;
+	uint64_t deadline = c->started_ns + c->timeout_ns, now;
+	bool ready;
+	int ret;
 
 	if (c->use_int1) {
-		ret = t->ops->wait_pin(t, TRANSPORT_INT1, timeout);
+		now = transport_now_ns(t);
+		ret = t->ops->wait_pin(t, TRANSPORT_INT1,
+				       deadline > now ? deadline - now : 0);
 		if (ret < 0)
 			return ret;
 		if (ret > 0) {
@@ -139,9 +147,33 @@ int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
 	return 0;
 }
 
+int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
+		 enum chip_wait *how)
+{
+	int ret;
+
+	ret = chip_start(c, ms, duration_us);
+
+	return ret ? ret : chip_wait(c, how);
+}
+
 static int16_t le16(const uint8_t *p)
 {
 	return (int16_t)(uint16_t)(p[0] | p[1] << 8);
+}
+
+static void decode_sample(const uint8_t buf[AS9888_SAMPLE_LEN],
+			  struct chip_sample *s)
+{
+	int axis;
+
+	for (axis = 0; axis < CHIP_AXES; axis++) {
+		s->mag[axis] = le16(&buf[AS9888_REG_HXL - AS9888_REG_ST1 + 2 * axis]);
+		s->acc[axis] = le16(&buf[AS9888_REG_A1XL - AS9888_REG_ST1 + 2 * axis]);
+	}
+	s->tmps = buf[AS9888_REG_TMPS - AS9888_REG_ST1];
+	s->empt = buf[AS9888_REG_EMPT - AS9888_REG_ST1];
+	s->st2 = buf[AS9888_REG_ST2 - AS9888_REG_ST1];
 }
 
 /*
@@ -153,7 +185,7 @@ static int16_t le16(const uint8_t *p)
 int chip_read_sample(struct chip *c, bool men, struct chip_sample *s)
 {
 	uint8_t buf[AS9888_SAMPLE_LEN];
-	int axis, ret;
+	int ret;
 
 	memset(buf, 0, sizeof(buf));
 	if (men) {
@@ -165,21 +197,45 @@ int chip_read_sample(struct chip *c, bool men, struct chip_sample *s)
 	} else {
 		ret = transport_read(c->t, AS9888_REG_ST1, buf, 1);
 		if (!ret)
-			ret = transport_read(c->t, AS9888_REG_TMPS,
-					     &buf[AS9888_REG_TMPS - AS9888_REG_ST1],
-					     AS9888_REG_ST2 - AS9888_REG_TMPS + 1);
+			ret = chip_read_rest(c, s);
+		if (!ret)
+			s->st1 = buf[0];
+		return ret;
 	}
 	if (ret)
 		return ret;
 
 	s->st1 = buf[0];
-	for (axis = 0; axis < CHIP_AXES; axis++) {
-		s->mag[axis] = le16(&buf[AS9888_REG_HXL - AS9888_REG_ST1 + 2 * axis]);
-		s->acc[axis] = le16(&buf[AS9888_REG_A1XL - AS9888_REG_ST1 + 2 * axis]);
-	}
-	s->tmps = buf[AS9888_REG_TMPS - AS9888_REG_ST1];
-	s->empt = buf[AS9888_REG_EMPT - AS9888_REG_ST1];
-	s->st2 = buf[AS9888_REG_ST2 - AS9888_REG_ST1];
+	decode_sample(buf, s);
+
+	return 0;
+}
+
+int chip_read_rest(struct chip *c, struct chip_sample *s)
+{
+	uint8_t buf[AS9888_SAMPLE_LEN];
+	int ret;
+
+	memset(buf, 0, sizeof(buf));
+	ret = transport_read(c->t, AS9888_REG_TMPS,
+			     &buf[AS9888_REG_TMPS - AS9888_REG_ST1],
+			     AS9888_REG_ST2 - AS9888_REG_TMPS + 1);
+	if (!ret)
+		decode_sample(buf, s);
+
+	return ret;
+}
+
+int chip_read_overlapped(struct chip *c, struct chip_sample *s, bool *newer)
+{
+	uint8_t buf[AS9888_SAMPLE_LEN];
+	int ret;
+
+	ret = transport_read(c->t, AS9888_REG_ST1, buf, sizeof(buf));
+	if (ret)
+		return ret;
+	*newer = buf[0] & AS9888_ST1_DRDY_MSK;
+	decode_sample(buf, s);
 
 	return 0;
 }

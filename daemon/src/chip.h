@@ -22,6 +22,8 @@
  * @powered_down: the chip is known to be in power-down (after a reset, an
  *		MS = 0 write or a completed single measurement)
  * @int1_dr:	INT1EN is known to hold DR1EN (cleared by a reset)
+ * @started_ns:	when the last chip_start() wrote MS
+ * @timeout_ns:	how long chip_wait() waits for that measurement
  */
 struct chip {
 	struct transport *t;
@@ -29,6 +31,8 @@ struct chip {
 	bool use_int1;
 	bool powered_down;
 	bool int1_dr;
+	uint64_t started_ns;
+	uint64_t timeout_ns;
 };
 
 /* A sample's registers ST1..ST2, decoded */
@@ -57,11 +61,32 @@ int chip_set_mode(struct chip *c, uint8_t ms);
 int chip_measure(struct chip *c, uint8_t ms, uint64_t duration_us,
 		 enum chip_wait *how);
 /*
+ * chip_measure() in two halves, so that the bus can be used while the chip
+ * converts: chip_start() writes MS (after t_PD), chip_wait() waits for the
+ * end of that measurement (@duration_us plus a margin after the write)
+ */
+int chip_start(struct chip *c, uint8_t ms, uint64_t duration_us);
+int chip_wait(struct chip *c, enum chip_wait *how);
+/*
  * Read a finished measurement: with @men (step 2) ST1, the magnetometer
  * data and ST2; without (step 3) ST1, then TMPS..ST2. What is not read
  * reads 0.
  */
 int chip_read_sample(struct chip *c, bool men, struct chip_sample *s);
+/*
+ * The rest of an accelerometer sample whose ST1 was read: TMPS..ST2 (the
+ * fields after ST1 in @s; @s->st1 is left alone)
+ */
+int chip_read_rest(struct chip *c, struct chip_sample *s);
+/*
+ * The rest of the last sample while the next measurement runs (datasheet
+ * section 3: the data registers hold the last sample until the end of the
+ * next measurement; only ST1 must be read before the MS write). One burst
+ * of ST1..ST2, so the chip itself tells whether the next measurement ended
+ * before the read: then @newer is set, the data belong to that newer
+ * measurement and the last sample is lost. Fills the fields after ST1.
+ */
+int chip_read_overlapped(struct chip *c, struct chip_sample *s, bool *newer);
 /* The datasheet time of a measurement with these SLCT2 settings */
 uint64_t chip_measure_time_us(bool men, bool alpf);
 

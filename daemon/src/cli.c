@@ -190,6 +190,36 @@ static int apply_permissible_error(struct cli_opts *o, const char *arg,
 	return 0;
 }
 
+/* P with up to 4 decimals, 0.5..0.9999 */
+static int apply_confidence(struct cli_opts *o, const char *arg, char *err,
+			    size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 4, FTEST_CONFIDENCE_MIN_1E4,
+			    FTEST_CONFIDENCE_MAX_1E4, &v))
+		return bad(err, errlen, "--confidence takes a probability in 0.5..0.9999, not \"%s\"",
+			   arg);
+	o->ftest.confidence_1e4 = (uint32_t)v;
+
+	return 0;
+}
+
+/* note: the application note's literal order; datasheet: the faster one */
+static int apply_sequence(struct cli_opts *o, const char *arg, char *err,
+			  size_t errlen)
+{
+	if (!strcmp(arg, "note"))
+		o->ftest.note_order = true;
+	else if (!strcmp(arg, "datasheet"))
+		o->ftest.note_order = false;
+	else
+		return bad(err, errlen, "--sequence takes note or datasheet, not \"%s\"",
+			   arg);
+
+	return 0;
+}
+
 static int apply_fluctuation(struct cli_opts *o, const char *arg, char *err,
 			     size_t errlen)
 {
@@ -455,6 +485,8 @@ static const struct cli_option cli_options[] = {
 	{ "busy-timeout", true, CMDS_LEVEL, apply_busy_timeout },
 	{ "permissible-error", true, CMD(CLI_FACTORY_TEST), apply_permissible_error },
 	{ "keep-going", false, CMD(CLI_FACTORY_TEST), apply_keep_going },
+	{ "sequence", true, CMD(CLI_FACTORY_TEST), apply_sequence },
+	{ "confidence", true, CMD(CLI_FACTORY_TEST), apply_confidence },
 	{ "junit", true, CMD(CLI_FACTORY_TEST), apply_junit },
 };
 
@@ -574,6 +606,8 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 		return bad(err, errlen, "request needs what to ask: status, check, recalibrate or rollback");
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
+	if (o->ftest.confidence_1e4 && !o->ftest.permissible_error_q16)
+		return bad(err, errlen, "--confidence needs --permissible-error (the E it bounds)");
 	if (!o->backend_given)
 		pick_backend(o);
 	if (o->backend == CLI_BACKEND_RAW && (o->unit_path || o->virtual_clock))

@@ -459,30 +459,51 @@ static const char *const pass2_steps[] = {
 	"3-32", "3-33", "3-34", "3-35", "3-36", "3-37",
 };
 
+double ftest_two_sided_z(double p)
+{
+	double lo = 0.0, hi = 40.0;
+	int i;
+
+	/* P(|Z| <= z) = erf(z / sqrt(2)), increasing in z: bisection */
+	for (i = 0; i < 100; i++) {
+		double mid = (lo + hi) / 2;
+
+		if (erf(mid / M_SQRT2) < p)
+			lo = mid;
+		else
+			hi = mid;
+	}
+
+	return (lo + hi) / 2;
+}
+
 /*
  * Note 2: N >= n * (sigma / Sigma)^2, with sigma measured on a pilot run of
  * single samples (n = 1), the noisiest axis deciding. The pilot's sigma-hat
  * is an estimate: N is taken for its one-sided 95 % upper confidence bound,
  * sigma-hat * sqrt((m - 1) / chi2_0.05(m - 1)) for m pilot samples, so that
  * the level mean's standard error sigma / sqrt(N) is within E in at least
- * 95 % of runs (docs/DECISIONS.md). @pilot keeps the samples for the first
- * level run, which starts with them.
+ * 95 % of runs: a one-sigma bound. With --confidence P the bound scales by
+ * z = z_(1+P)/2, so that |mean - true value| <= z sigma / sqrt(N) <= E with
+ * probability P per axis (docs/DECISIONS.md). @pilot keeps the samples for
+ * the first level run, which starts with them.
  */
 static int choose_samples(struct ftest_ctx *x, uint32_t *n,
 			  struct level_run *pilot)
 {
-	double worst = 0.0, upper;
-	char limits[64];
+	double worst = 0.0, upper, scaled;
+	char limits[64], bound[48] = "";
 	bool ok;
 	int axis, ret;
 
+	x->res->bound_z = 1.0;
 	if (!x->o->permissible_error_q16) {
 		*n = x->o->samples;
 		return 0;
 	}
 
 	ret = x->ops->level_collect(x, FTEST_PILOT_SAMPLES, "3-3", pilot);
-	if (ret)
+	if (ret || x->stop)
 		return ret;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		double mean = (double)pilot->sum[axis] / pilot->n;
@@ -494,18 +515,26 @@ static int choose_samples(struct ftest_ctx *x, uint32_t *n,
 	}
 	worst = sqrt(worst);
 	upper = worst * sqrt((FTEST_PILOT_SAMPLES - 1) / FTEST_PILOT_CHI2_05);
+	if (x->o->confidence_1e4) {
+		x->res->bound_z = ftest_two_sided_z(x->o->confidence_1e4 / 1e4);
+		snprintf(bound, sizeof(bound), ", |error| <= E with P %.4g (z %.3f)",
+			 x->o->confidence_1e4 / 1e4, x->res->bound_z);
+	}
 	x->res->pilot_sigma = worst;
 	x->res->pilot_sigma_upper = upper;
-	*n = as9888_samples_needed(1, (uint32_t)lround(upper * AS9888_Q16_ONE),
-				   x->o->permissible_error_q16);
+	scaled = upper * x->res->bound_z * AS9888_Q16_ONE;
+	*n = scaled < UINT32_MAX ?
+	     as9888_samples_needed(1, (uint32_t)lround(scaled),
+				   x->o->permissible_error_q16) :
+	     AS9888_SAMPLES_MAX + 1;
 	if (*n < x->o->samples)
 		*n = x->o->samples;
 	ok = *n <= AS9888_SAMPLES_MAX;
 	snprintf(limits, sizeof(limits), "N <= %d", AS9888_SAMPLES_MAX);
 	ftest_judge(x, "3-3.N", "averaging count from Note 2", ok, limits,
-		    "sigma %.3f LSB (95 %% upper bound %.3f), E %.3f LSB: N %u%s",
+		    "sigma %.3f LSB (95 %% upper bound %.3f), E %.3f LSB%s: N %u%s",
 		    worst, upper,
-		    (double)x->o->permissible_error_q16 / AS9888_Q16_ONE, *n,
+		    (double)x->o->permissible_error_q16 / AS9888_Q16_ONE, bound, *n,
 		    ok ? "" : " (environment too noisy)");
 	ftest_value(x, *n, x->o->samples, AS9888_SAMPLES_MAX, "samples");
 
@@ -518,6 +547,20 @@ static void means(const struct level_run *r, int32_t mean_q16[AS9888_AXES])
 
 	for (axis = 0; axis < AS9888_AXES; axis++)
 		as9888_mean_q16(r->sum[axis], r->n, &mean_q16[axis]);
+}
+
+/* The standard error of each axis' mean from the run's own samples */
+static void standard_errors(const struct level_run *r, double se[AS9888_AXES])
+{
+	int axis;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		double mean = (double)r->sum[axis] / r->n;
+		double var = r->n > 1 ?
+			     ((double)r->sq_sum[axis] - mean * r->sum[axis]) / (r->n - 1) : 0;
+
+		se[axis] = sqrt(var > 0 ? var : 0) / sqrt(r->n);
+	}
 }
 
 /*
@@ -667,6 +710,7 @@ static int level_pass(struct ftest_ctx *x, uint32_t n, const char *step,
 		return 0;
 
 	means(&run, mean);
+	standard_errors(&run, x->res->level_se);
 	ret = level_temperature(&run, t_l);
 	if (!ret)
 		ret = sensitivities(&x->res->ee, *t_l, st);

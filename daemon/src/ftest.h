@@ -24,6 +24,9 @@
  * = 1.268 s with probability 0.95
  */
 #define FTEST_PILOT_CHI2_05		19.281
+/* --confidence: P from 0.5 to 0.9999 (in units of 1e-4) */
+#define FTEST_CONFIDENCE_MIN_1E4	5000
+#define FTEST_CONFIDENCE_MAX_1E4	9999
 /* Largest TMPS spread (codes) within one averaging run: 0.625 degC */
 #define FTEST_TMPS_SPREAD_MAX		1
 #define FTEST_STABLE_TIMEOUT_MS_DEFAULT	10000
@@ -38,6 +41,11 @@
  * struct ftest_opts - how to run the test
  * @samples:		N, samples averaged per level measurement (0: D7's 10)
  * @permissible_error_q16: Sigma of Note 2 in LSB Q16 (0: use @samples)
+ * @confidence_1e4:	with a permissible error, 0: Note 2's rule, a
+ *			one-sigma bound (the standard error of each stored
+ *			mean <= E); else P x 10000: |stored mean - true
+ *			value| <= E with probability P per axis (N scaled by
+ *			the normal quantile z_(1+P)/2 squared)
  * @fluctuation:	max - min limit per axis, LSB (Note 3)
  * @lpf:		accelerometer low-pass filter on (SLCT2 ALPF)
  * @gravity_given:	@gravity was given (else D8 detects it)
@@ -52,10 +60,17 @@
  * @measure_only:	stop after the first level run: no DAC change
  * @expect_eeprom:	refuse a chip whose EEPROM differs (NULL: any chip)
  * @apply_dac:		DAC values to load after the trims (NULL: EEPROM's)
+ * @note_order:		the application note's literal order on the register
+ *			backends: every register of a sample read before the
+ *			next MS write, t_PD before the trims, the project's
+ *			read-backs at once (default: the datasheet's order,
+ *			the bus working while the chip converts; the same
+ *			judgments)
  */
 struct ftest_opts {
 	uint32_t samples;
 	uint32_t permissible_error_q16;
+	uint32_t confidence_1e4;
 	uint32_t fluctuation;
 	bool lpf;
 	bool gravity_given;
@@ -68,9 +83,13 @@ struct ftest_opts {
 	bool measure_only;
 	const uint8_t *expect_eeprom;
 	const uint8_t *apply_dac;
+	bool note_order;
 };
 
 void ftest_opts_default(struct ftest_opts *o);
+
+/* The normal quantile z with P(|Z| <= z) = @p, for 0 < @p < 1 */
+double ftest_two_sided_z(double p);
 
 /**
  * struct ftest_result - what the test found
@@ -92,6 +111,12 @@ void ftest_opts_default(struct ftest_opts *o);
  * @pilot_sigma: with a permissible error: the pilot's sigma-hat of the
  *		noisiest axis, LSB
  * @pilot_sigma_upper: its 95 % upper confidence bound, which chose N
+ * @bound_z:	the normal quantile N was chosen for (1: one-sigma bound)
+ * @level_se:	the standard error each stored level mean achieved, from
+ *		its own run's samples: s / sqrt(N), LSB
+ * @overlap_lost: measurements lost because a stall let the next
+ *		measurement end before the last sample was read (datasheet's
+ *		order only; the run then took more)
  * @opts:	the options the test ran with
  * @started:	when it started, seconds since the epoch (UTC)
  */
@@ -111,6 +136,9 @@ struct ftest_result {
 	const char *backend;
 	double pilot_sigma;
 	double pilot_sigma_upper;
+	double bound_z;
+	double level_se[AS9888_AXES];
+	uint32_t overlap_lost;
 	struct ftest_opts opts;
 	int64_t started;
 };

@@ -65,11 +65,51 @@ static void print_options(FILE *out, const struct ftest_opts *o)
 	fprintf(out, "{\"samples\": %u, \"permissible_error\": ", o->samples);
 	json_number(out, o->permissible_error_q16 ?
 		    o->permissible_error_q16 / 65536.0 : NAN);
+	fputs(", \"confidence\": ", out);
+	json_number(out, o->confidence_1e4 ? o->confidence_1e4 / 1e4 : NAN);
 	fprintf(out, ", \"fluctuation\": %u, \"lpf\": %s, \"gravity\": ",
 		o->fluctuation, o->lpf ? "true" : "false");
 	json_string(out, g[0] ? g : NULL);
-	fprintf(out, ", \"keep_going\": %s, \"stable_timeout_ms\": %u}",
-		o->keep_going ? "true" : "false", o->stable_timeout_ms);
+	fprintf(out, ", \"keep_going\": %s, \"stable_timeout_ms\": %u, \"sequence\": \"%s\"}",
+		o->keep_going ? "true" : "false", o->stable_timeout_ms,
+		o->note_order ? "note" : "datasheet");
+}
+
+/*
+ * What the stored level means promise (docs/DECISIONS.md, "What E means"):
+ * the bound's kind, E and P, the quantile z, and per axis the standard
+ * error the stored run achieved and mean +- z * that standard error
+ */
+static void print_error_bound(FILE *out, const struct ftest_result *res)
+{
+	const struct ftest_opts *o = &res->opts;
+	const char *mode = !o->permissible_error_q16 ? "fixed_n" :
+			   o->confidence_1e4 ? "probability" : "one_sigma";
+	int axis;
+
+	if (!res->have_calibration) {
+		fputs("null", out);
+		return;
+	}
+	fputs("{\n    \"mode\": ", out);
+	json_string(out, mode);
+	fputs(",\n    \"permissible_error\": ", out);
+	json_number(out, o->permissible_error_q16 ?
+		    o->permissible_error_q16 / 65536.0 : NAN);
+	fputs(",\n    \"probability\": ", out);
+	/* one sigma: P(|Z| <= 1) */
+	json_number(out, !o->permissible_error_q16 ? NAN :
+		    o->confidence_1e4 ? o->confidence_1e4 / 1e4 : erf(M_SQRT1_2));
+	fprintf(out, ",\n    \"z\": %.6f,\n    \"standard_error\": [%.6f, %.6f, %.6f],\n"
+		"    \"interval\": [", res->bound_z, res->level_se[0],
+		res->level_se[1], res->level_se[2]);
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		double m = res->rec.level_mean_q16[axis] / 65536.0;
+		double h = res->bound_z * res->level_se[axis];
+
+		fprintf(out, "%s[%.6f, %.6f]", axis ? ", " : "", m - h, m + h);
+	}
+	fputs("]\n  }", out);
 }
 
 void ftest_print_json(FILE *out, const struct ftest_result *res,
@@ -120,7 +160,10 @@ void ftest_print_json(FILE *out, const struct ftest_result *res,
 			rec->gravity[1], rec->gravity[2], rec->samples,
 			rec->lpf ? "true" : "false");
 	}
+	fputs(",\n  \"error_bound\": ", out);
+	print_error_bound(out, res);
 	fprintf(out, ",\n  \"duration_ms\": %.3f", res->duration_ns / 1e6);
+	fprintf(out, ",\n  \"overlap_lost\": %u", res->overlap_lost);
 	fputs(",\n  \"record\": ", out);
 	json_string(out, stored ? record_path : NULL);
 	fputs("\n}\n", out);

@@ -14,7 +14,8 @@
  * (raised when a field changes meaning or goes away; new fields keep it).
  */
 #define FTEST_REPORT_SCHEMA	"as9888-factory-test-report"
-#define FTEST_REPORT_VERSION	1
+/* 2: options.permissible_error with options.confidence bounds the error itself */
+#define FTEST_REPORT_VERSION	2
 #ifndef AS9888_VERSION
 #define AS9888_VERSION		"unknown"
 #endif

@@ -43,8 +43,22 @@ check "a passing report validates, with every judgment of the application note u
 report lpf "noise = 1.5" --lpf --gravity z- --samples 16
 report pe "noise = 2" --permissible-error 0.25
 report side "up = -1 0 0" --fluctuation 20
-check "passing reports with --lpf --gravity --samples, --permissible-error, --fluctuation validate" \
-	valid --complete "$work/lpf.json" "$work/pe.json" "$work/side.json"
+report pc "noise = 2" --permissible-error 0.25 --confidence 0.95 --sequence note
+check "passing reports with --lpf --gravity --samples, --permissible-error (--confidence), --fluctuation validate" \
+	valid --complete "$work/lpf.json" "$work/pe.json" "$work/side.json" "$work/pc.json"
+check "the error bound: one sigma by default, the stated probability with --confidence" python3 -c "
+import json, sys
+e = json.load(open('$work/pe.json')); c = json.load(open('$work/pc.json'))
+a, b = e['error_bound'], c['error_bound']
+ok = (a['mode'] == 'one_sigma' and abs(a['probability'] - 0.6827) < 1e-4 and a['z'] == 1 and
+      b['mode'] == 'probability' and b['probability'] == 0.95 and abs(b['z'] - 1.96) < 1e-3 and
+      c['options']['confidence'] == 0.95 and c['options']['sequence'] == 'note' and
+      c['calibration']['samples'] > 3 * e['calibration']['samples'])
+for r in (e, c):
+    m, se, z = r['calibration']['level_mean'], r['error_bound']['standard_error'], r['error_bound']['z']
+    ok = ok and all(abs(lo - (m[i] - z * se[i])) < 1e-4 and abs(hi - (m[i] + z * se[i])) < 1e-4 and 0 < se[i] < 0.25
+                    for i, (lo, hi) in enumerate(r['error_bound']['interval']))
+sys.exit(not ok)"
 check "the operator's options are in the report" python3 -c "
 import json, sys
 d = json.load(open('$work/lpf.json')); o = d['options']

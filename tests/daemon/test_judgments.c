@@ -266,6 +266,8 @@ static int run_tampered(const struct tamper_rule *rule, bool keep_going,
 	x.rule = rule;
 	ftest_opts_default(&o);
 	o.keep_going = keep_going;
+	/* the burst numbering above is the note's order (test_sequence.c: both agree) */
+	o.note_order = true;
 	memset(res, 0, sizeof(*res));
 	ftest_run(&x.base, &o, res);
 	res->backend = "sim";
