@@ -61,6 +61,8 @@
  *		earlier one is still held is delivered with it, as a
  *		controller that latches one pending edge does; counted in
  *		stats as irqs_delayed. Read: the delay in use
+ *  glitch_int1	write anything: one INT1 edge now, whatever the chip does (a
+ *		glitch on the line, the pin of a chip without power)
  * Live environment, without re-creating the chip or the device (registers,
  * a running measurement and the counters stay; every measurement that
  * completes after the write uses the new value; it also holds for a chip
@@ -1462,6 +1464,21 @@ static int as9888_sim_count_write(void *data, u64 val)
 DEFINE_DEBUGFS_ATTRIBUTE(as9888_sim_count_fops, as9888_sim_count_get,
 			 as9888_sim_count_write, "%llu\n");
 
+static ssize_t as9888_sim_glitch_write(struct file *file,
+				       const char __user *ubuf, size_t count,
+				       loff_t *ppos)
+{
+	as9888_sim_fire(file->private_data, BIT(AS9888_PIN_INT1));
+	return count;
+}
+
+static const struct file_operations as9888_sim_glitch_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.write = as9888_sim_glitch_write,
+	.llseek = default_llseek,
+};
+
 static int as9888_sim_regs_show(struct seq_file *sf, void *unused)
 {
 	static const u8 cfg_regs[] = {
@@ -1661,6 +1678,8 @@ static int __init as9888_sim_init(void)
 				   &as9888_sim_count_fops);
 	debugfs_create_file_unsafe("delay_int1_us", 0600, s->dir,
 				   &s->delay_int1_us, &as9888_sim_count_fops);
+	debugfs_create_file("glitch_int1", 0200, s->dir, s,
+			    &as9888_sim_glitch_fops);
 	for (i = 0; i < AS9888_SIM_NKNOBS; i++) {
 		s->knobs[i].s = s;
 		s->knobs[i].id = i;
