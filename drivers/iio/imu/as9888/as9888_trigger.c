@@ -200,12 +200,13 @@ static void as9888_trig_gap(struct as9888_chip *chip)
 
 /*
  * Start the sample due at @slot, for every device whose next sample is due
- * by then or within half its period (so that two devices' schedules fall
- * into step instead of each taking the chip on its own). With chip->lock
- * held and the trigger IDLE.
+ * by then, or by now when the sample is late, or within half its period
+ * of that (so that two devices' schedules fall into step instead of each
+ * taking the chip on its own). With chip->lock held and the trigger IDLE.
  */
 static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 {
+	ktime_t by = max(slot, ktime_get());
 	unsigned long take = 0;
 	unsigned int id;
 	ktime_t now;
@@ -219,7 +220,7 @@ static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 			continue;
 		period = as9888_trig_period_ns(chip, id);
 		if (ktime_before(chip->trig_due[id],
-				 ktime_add_ns(slot, period / 2)))
+				 ktime_add_ns(by, period / 2)))
 			take |= BIT(id);
 	}
 
