@@ -58,6 +58,15 @@
  *		write N: the next N times the supply is to be switched on
  *		(off), the regulator fails with -EIO and the chip keeps its
  *		power state; read: how many are left
+ *  delay_int1_us write N: every INT1 edge from now on reaches the interrupt
+ *		controller N microseconds after the pin rose (a slow
+ *		interrupt path, a host that deschedules the guest); 0 (the
+ *		default) delivers them at once. An edge that comes while an
+ *		earlier one is still held is delivered with it, as a
+ *		controller that latches one pending edge does; counted in
+ *		stats as irqs_delayed. Read: the delay in use
+ *  glitch_int1	write anything: one INT1 edge now, whatever the chip does (a
+ *		glitch on the line, the pin of a chip without power)
  * Live environment, without re-creating the chip or the device (registers,
  * a running measurement and the counters stay; every measurement that
  * completes after the write uses the new value; it also holds for a chip
@@ -175,7 +184,11 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @fail_next:	bus transfers still to fail
  * @fail_supply_on: switch-ons of the supply still to fail
  * @fail_supply_off: switch-offs of the supply still to fail
+ * @delay_int1_us: how late INT1 edges are delivered (delay_int1_us)
+ * @irqs_delayed: INT1 edges delivered late
+ * @held:	INT1 edges found and not delivered yet (bit 0), under @lock
  * @timer:	wakes up at the model's next event
+ * @delay_timer: delivers the INT1 edge held back by @delay_int1_us
  * @cfg_lock:	serialises unit/present changes
  * @unit:	the unit in use
  * @unit_text:	its description (NUL-terminated)
@@ -213,7 +226,11 @@ struct as9888_sim {
 	u32 fail_next;
 	u32 fail_supply_on;
 	u32 fail_supply_off;
+	u32 delay_int1_us;
+	u64 irqs_delayed;
+	unsigned int held;
 	struct hrtimer timer;
+	struct hrtimer delay_timer;
 
 	struct mutex cfg_lock;		/* see @cfg_lock above */
 	struct as9888_unit unit;
@@ -342,8 +359,31 @@ static void as9888_sim_arm(struct as9888_sim *s)
 }
 
 /*
+ * delay_int1_us: hold an INT1 edge back and deliver it that much later;
+ * returns the edges to deliver now. Caller holds sim->lock.
+ */
+static unsigned int as9888_sim_hold(struct as9888_sim *s, unsigned int fire,
+				    u64 now)
+{
+	u32 delay_us = s->delay_int1_us;
+
+	if (!delay_us || !(fire & BIT(AS9888_PIN_INT1)))
+		return fire;
+	fire &= ~BIT(AS9888_PIN_INT1);
+	s->irqs_delayed++;
+	if (!s->held) {
+		s->held = BIT(AS9888_PIN_INT1);
+		hrtimer_start(&s->delay_timer,
+			      ns_to_ktime(now + (u64)delay_us * NSEC_PER_USEC),
+			      HRTIMER_MODE_ABS);
+	}
+	return fire;
+}
+
+/*
  * Sample INT1/INT2 at @now and return the lines that need an interrupt:
- * bit n set for line AS9888_SIM_INT1 + n. Caller holds sim->lock.
+ * bit n set for line AS9888_SIM_INT1 + n (an INT1 edge that delay_int1_us
+ * holds back is not among them). Caller holds sim->lock.
  *
  * The level alone misses a pulse: a transfer that starts a measurement
  * (the MS write deasserts the pin) and is then held up longer than the
@@ -389,7 +429,7 @@ static unsigned int as9888_sim_edges(struct as9888_sim *s, u64 now)
 		}
 		fire |= BIT(i);
 	}
-	return fire;
+	return as9888_sim_hold(s, fire, now);
 }
 
 /* Deliver the edges found by as9888_sim_edges(); without sim->lock. */
@@ -419,6 +459,21 @@ static void as9888_sim_fire(struct as9888_sim *s, unsigned int fire)
 	}
 }
 
+static enum hrtimer_restart as9888_sim_delay_fn(struct hrtimer *t)
+{
+	struct as9888_sim *s = container_of(t, struct as9888_sim, delay_timer);
+	unsigned int fire;
+	unsigned long flags;
+
+	spin_lock_irqsave(&s->lock, flags);
+	fire = s->held;
+	s->held = 0;
+	spin_unlock_irqrestore(&s->lock, flags);
+
+	as9888_sim_fire(s, fire);
+	return HRTIMER_NORESTART;
+}
+
 static enum hrtimer_restart as9888_sim_timer_fn(struct hrtimer *t)
 {
 	struct as9888_sim *s = container_of(t, struct as9888_sim, timer);
@@ -435,6 +490,18 @@ static enum hrtimer_restart as9888_sim_timer_fn(struct hrtimer *t)
 
 	as9888_sim_fire(s, fire);
 	return HRTIMER_NORESTART;
+}
+
+/* An absolute CLOCK_MONOTONIC hrtimer calling @fn */
+static void as9888_sim_timer_setup(struct hrtimer *t,
+				   enum hrtimer_restart (*fn)(struct hrtimer *))
+{
+#if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 13, 0)
+	hrtimer_setup(t, fn, CLOCK_MONOTONIC, HRTIMER_MODE_ABS);
+#else
+	hrtimer_init(t, CLOCK_MONOTONIC, HRTIMER_MODE_ABS);
+	t->function = fn;
+#endif
 }
 
 /* Power the chip on as @unit; caller holds cfg_lock, device removed. */
@@ -1266,7 +1333,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 {
 	struct as9888_sim *s = sf->private;
 	struct as9888_model_stats st;
-	u64 xfers, msgs, mx, mn, irqs, dropped;
+	u64 xfers, msgs, mx, mn, irqs, dropped, delayed;
 	unsigned long flags;
 
 	spin_lock_irqsave(&s->lock, flags);
@@ -1277,6 +1344,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	mn = s->model_naks;
 	irqs = s->irqs;
 	dropped = s->irqs_dropped;
+	delayed = s->irqs_delayed;
 	spin_unlock_irqrestore(&s->lock, flags);
 
 	seq_printf(sf, "bus_calls %llu\n", xfers);
@@ -1285,6 +1353,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	seq_printf(sf, "bus_naks %llu\n", mn);
 	seq_printf(sf, "irqs %llu\n", irqs);
 	seq_printf(sf, "irqs_dropped %llu\n", dropped);
+	seq_printf(sf, "irqs_delayed %llu\n", delayed);
 	seq_printf(sf, "chip_transfers %llu\n", st.transfers);
 	seq_printf(sf, "chip_reads %llu\n", st.reads);
 	seq_printf(sf, "chip_writes %llu\n", st.writes);
@@ -1321,6 +1390,7 @@ static ssize_t as9888_sim_stats_write(struct file *file,
 	s->model_naks = 0;
 	s->irqs = 0;
 	s->irqs_dropped = 0;
+	s->irqs_delayed = 0;
 	spin_unlock_irqrestore(&s->lock, flags);
 	return count;
 }
@@ -1407,6 +1477,21 @@ static int as9888_sim_count_write(void *data, u64 val)
 }
 DEFINE_DEBUGFS_ATTRIBUTE(as9888_sim_count_fops, as9888_sim_count_get,
 			 as9888_sim_count_write, "%llu\n");
+
+static ssize_t as9888_sim_glitch_write(struct file *file,
+				       const char __user *ubuf, size_t count,
+				       loff_t *ppos)
+{
+	as9888_sim_fire(file->private_data, BIT(AS9888_PIN_INT1));
+	return count;
+}
+
+static const struct file_operations as9888_sim_glitch_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.write = as9888_sim_glitch_write,
+	.llseek = default_llseek,
+};
 
 static int as9888_sim_regs_show(struct seq_file *sf, void *unused)
 {
@@ -1497,13 +1582,8 @@ static int __init as9888_sim_init(void)
 		return -ENOMEM;
 	spin_lock_init(&s->lock);
 	mutex_init(&s->cfg_lock);
-#if LINUX_VERSION_CODE >= KERNEL_VERSION(6, 13, 0)
-	hrtimer_setup(&s->timer, as9888_sim_timer_fn, CLOCK_MONOTONIC,
-		      HRTIMER_MODE_ABS);
-#else
-	hrtimer_init(&s->timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS);
-	s->timer.function = as9888_sim_timer_fn;
-#endif
+	as9888_sim_timer_setup(&s->timer, as9888_sim_timer_fn);
+	as9888_sim_timer_setup(&s->delay_timer, as9888_sim_delay_fn);
 	as9888_unit_default(&s->unit);
 	s->unit_text = kstrdup("# default unit\n", GFP_KERNEL);
 	if (!s->unit_text) {
@@ -1614,6 +1694,10 @@ static int __init as9888_sim_init(void)
 				   &s->fail_supply_on, &as9888_sim_count_fops);
 	debugfs_create_file_unsafe("fail_supply_off", 0600, s->dir,
 				   &s->fail_supply_off, &as9888_sim_count_fops);
+	debugfs_create_file_unsafe("delay_int1_us", 0600, s->dir,
+				   &s->delay_int1_us, &as9888_sim_count_fops);
+	debugfs_create_file("glitch_int1", 0200, s->dir, s,
+			    &as9888_sim_glitch_fops);
 	for (i = 0; i < AS9888_SIM_NKNOBS; i++) {
 		s->knobs[i].s = s;
 		s->knobs[i].id = i;
@@ -1647,6 +1731,7 @@ err_gpio:
 	gpiochip_remove(gc);
 err_domain:
 	hrtimer_cancel(&s->timer);
+	hrtimer_cancel(&s->delay_timer);
 	as9888_sim_dispose_irqs(s);
 	irq_domain_remove_sim(s->domain);
 	irq_domain_remove(s->lvl_domain);
@@ -1656,6 +1741,7 @@ err_node:
 	software_node_unregister_node_group(as9888_sim_nodes);
 err_free:
 	hrtimer_cancel(&s->timer);
+	hrtimer_cancel(&s->delay_timer);
 	kfree(s->unit_text);
 	kfree(s);
 	sim = NULL;
@@ -1681,6 +1767,7 @@ static void __exit as9888_sim_exit(void)
 	i2c_del_adapter(&s->adap);
 	gpiochip_remove(&s->gc);
 	hrtimer_cancel(&s->timer);
+	hrtimer_cancel(&s->delay_timer);
 	as9888_sim_dispose_irqs(s);
 	irq_domain_remove_sim(s->domain);
 	irq_work_sync(&s->lvl_work);

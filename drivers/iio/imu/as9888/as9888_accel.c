@@ -250,7 +250,7 @@ static int as9888_accel_read_raw(struct iio_dev *indio_dev,
 	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
 		return as9888_read_oversampling(chip, val);
 	case IIO_CHAN_INFO_SAMP_FREQ:
-		return as9888_read_samp_freq(chip, val);
+		return as9888_read_samp_freq(indio_dev, val);
 	default:
 		return -EINVAL;
 	}
@@ -280,7 +280,8 @@ static int as9888_accel_read_avail(struct iio_dev *indio_dev,
 		*type = IIO_VAL_INT;
 		return IIO_AVAIL_LIST;
 	case IIO_CHAN_INFO_SAMP_FREQ:
-		return as9888_read_samp_freq_avail(vals, type, length);
+		return as9888_read_samp_freq_avail(indio_dev, vals, type,
+						   length);
 	default:
 		return -EINVAL;
 	}
@@ -301,7 +302,7 @@ static int as9888_accel_write_raw(struct iio_dev *indio_dev,
 		/* Also while buffering: see as9888_write_calibbias() */
 		return as9888_write_calibbias(chip, chan->address, val);
 	case IIO_CHAN_INFO_SAMP_FREQ:
-		return as9888_write_samp_freq(chip, val);
+		return as9888_write_samp_freq(indio_dev, val);
 	case IIO_CHAN_INFO_OVERSAMPLING_RATIO:
 		/* The sample time changes: not while the buffer runs */
 		if (!iio_device_claim_direct(indio_dev))

@@ -52,9 +52,11 @@
 #define AS9888_POLL_US			100
 /*
  * How long a synchronous measurement waits for the data-ready trigger's
- * next gap between two samples, beyond two sampling periods
+ * gap between two samples: one sample and its handlers, or the trigger's
+ * watchdog (1 s) when its edge never comes, and far beyond the latency of
+ * a handler on a busy system
  */
-#define AS9888_GAP_WAIT_SLACK_MS	2000
+#define AS9888_GAP_WAIT_MS		3000
 
 /* Register map */
 
@@ -212,9 +214,10 @@ int as9888_start(struct as9888_chip *chip, u8 mode, bool men)
 		reinit_completion(&chip->drdy);
 
 	as9888_wait_pd(chip);
+	/* Counted first: the edge may come before regmap_write() returns */
 	scoped_guard(mutex, &chip->int_lock) {
-		ret = regmap_write(chip->regmap, AS9888_REG_MS, mode);
 		WRITE_ONCE(chip->meas_seq, chip->meas_seq + 1);
+		ret = regmap_write(chip->regmap, AS9888_REG_MS, mode);
 	}
 	chip->last_start = ktime_get();
 
@@ -296,8 +299,8 @@ static int as9888_wait_sample(struct as9888_chip *chip,
 		if (ret)
 			return ret;
 
-		*ts = chip->drdy_ts[id];
-		chip->pd_since = chip->drdy_time;
+		*ts = READ_ONCE(chip->drdy_ts[id]);
+		chip->pd_since = READ_ONCE(chip->drdy_time);
 
 		return as9888_read_sample(chip, s);
 	}
@@ -368,15 +371,10 @@ int as9888_check_magn(const struct as9888_raw_sample *s)
 	return 0;
 }
 
-/*
- * How long to wait for the data-ready trigger's gap: a sample may keep the
- * chip for a whole period, and the one after it too when a handler ran late
- */
-static unsigned long as9888_trig_wait_jiffies(const struct as9888_chip *chip)
+/* No sample of the data-ready trigger in flight or in its handlers */
+static bool as9888_trig_idle(struct as9888_chip *chip)
 {
-	unsigned int period_ms = DIV_ROUND_UP(MSEC_PER_SEC, chip->samp_freq);
-
-	return msecs_to_jiffies(2 * period_ms + AS9888_GAP_WAIT_SLACK_MS);
+	return atomic_read(&chip->trig_state) == AS9888_TRIG_IDLE;
 }
 
 /**
@@ -386,9 +384,9 @@ static unsigned long as9888_trig_wait_jiffies(const struct as9888_chip *chip)
  *
  * A waiter is counted in chip->gap_waiters, and the trigger does not start
  * its next sample while one is counted: the gap is handed over. Without
- * that, the trigger's thread, which runs at real-time priority and starts
- * the next sample at once when it is late, would take the chip back
- * before the woken waiter ever ran.
+ * that, a trigger whose next sample is due at once would take the chip
+ * back before the woken waiter ever ran. The last waiter to leave has the
+ * trigger look at its schedule again (it starts once the lock is free).
  *
  * Return: 0 with chip->lock held and no measurement of the data-ready
  * trigger in flight, or -ETIMEDOUT when the trigger's sample did not come
@@ -401,25 +399,25 @@ int as9888_wait_gap(struct as9888_chip *chip)
 
 	lockdep_assert_held(&chip->lock);
 
-	if (!chip->trig_busy)
+	if (as9888_trig_idle(chip))
 		return 0;
 
-	left = as9888_trig_wait_jiffies(chip);
-	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters + 1);
-	while (chip->trig_busy) {
+	left = msecs_to_jiffies(AS9888_GAP_WAIT_MS);
+	chip->gap_waiters++;
+	while (!as9888_trig_idle(chip)) {
 		mutex_unlock(&chip->lock);
-		left = wait_event_timeout(chip->gap_wq,
-					  !READ_ONCE(chip->trig_busy), left);
+		left = wait_event_timeout(chip->gap_wq, as9888_trig_idle(chip),
+					  left);
 		mutex_lock(&chip->lock);
-		if (!left && chip->trig_busy) {
+		if (!left && !as9888_trig_idle(chip)) {
 			dev_err_ratelimited(chip->dev,
 					    "data-ready trigger stalled\n");
 			ret = -ETIMEDOUT;
 			break;
 		}
 	}
-	WRITE_ONCE(chip->gap_waiters, chip->gap_waiters - 1);
-	wake_up_all(&chip->gap_wq);
+	if (!--chip->gap_waiters)
+		as9888_trig_kick(chip);
 
 	return ret;
 }
@@ -532,56 +530,6 @@ int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,
 	}
 
 	return 0;
-}
-
-/* Sampling frequency of the data-ready trigger, shared by both devices */
-
-/*
- * Rates of the data-ready triggered buffer: those whose period leaves room
- * for the longest sample, t_MAG with the magnetometer in the scan, plus
- * t_PD and the sample's bus transfers (a mode write and a 16-byte burst
- * read take about 0.5 ms on I2C at 400 kHz), so that every rate offered is
- * the rate delivered whatever the scan and the filter.
- */
-#define AS9888_BUS_BUDGET_US		1000
-#define AS9888_SAMP_FREQ_MAX		100
-static_assert(USEC_PER_SEC / AS9888_SAMP_FREQ_MAX >=
-	      AS9888_T_MAG_US + AS9888_T_PD_US + AS9888_BUS_BUDGET_US);
-
-static const int as9888_samp_freq_avail[] = {
-	1, 2, 5, 10, 20, 25, 50, AS9888_SAMP_FREQ_MAX,
-};
-
-int as9888_read_samp_freq_avail(const int **vals, int *type, int *length)
-{
-	*vals = as9888_samp_freq_avail;
-	*length = ARRAY_SIZE(as9888_samp_freq_avail);
-	*type = IIO_VAL_INT;
-
-	return IIO_AVAIL_LIST;
-}
-
-int as9888_read_samp_freq(struct as9888_chip *chip, int *val)
-{
-	guard(mutex)(&chip->lock);
-	*val = chip->samp_freq;
-
-	return IIO_VAL_INT;
-}
-
-int as9888_write_samp_freq(struct as9888_chip *chip, int freq)
-{
-	unsigned int i;
-
-	for (i = 0; i < ARRAY_SIZE(as9888_samp_freq_avail); i++) {
-		if (as9888_samp_freq_avail[i] == freq) {
-			guard(mutex)(&chip->lock);
-			chip->samp_freq = freq;
-			return 0;
-		}
-	}
-
-	return -EINVAL;
 }
 
 /* The mount matrix from firmware, the same for both sensors */

@@ -10,9 +10,11 @@
 #ifndef AS9888_CORE_H
 #define AS9888_CORE_H
 
+#include <linux/atomic.h>
 #include <linux/build_bug.h>
 #include <linux/compiler.h>
 #include <linux/completion.h>
+#include <linux/hrtimer.h>
 #include <linux/ktime.h>
 #include <linux/mutex.h>
 #include <linux/regulator/consumer.h>
@@ -77,6 +79,18 @@ struct as9888_int_pin {
 	unsigned int st_reg;
 };
 
+/*
+ * Where the data-ready trigger's current sample is (chip->trig_state):
+ * the gap between two samples (the chip is free for anything else), a
+ * measurement in flight, or the trigger fired on its edge and its
+ * handlers hold the sample until the reenable op
+ */
+enum as9888_trig_state {
+	AS9888_TRIG_IDLE,
+	AS9888_TRIG_MEASURING,
+	AS9888_TRIG_FIRED,
+};
+
 /* Sensors of the chip, each an IIO device of its own */
 enum as9888_sensor_id {
 	AS9888_ACCEL,
@@ -104,47 +118,50 @@ enum as9888_sensor_id {
  *		deasserts the pin, and @meas_seq) atomic with respect to the
  *		deassertion of a level-triggered pin by reading INTxST; taken
  *		inside @lock, and alone by the interrupt thread
- * @meas_seq:	measurements started, under @int_lock
- * @irq_seq:	@meas_seq when the interrupt last fired
- * @drdy:	completed by the data-ready interrupt for measurements waited
- *		for synchronously
+ * @meas_seq:	measurements started, under @int_lock; counted before the
+ *		MS write, so that its edge always finds it
+ * @irq_seq:	@meas_seq when the interrupt last fired: an edge that finds
+ *		the two equal belongs to no measurement (the pin of a chip
+ *		without power, a glitch) and is not handled
+ * @drdy:	completed by INT1 for measurements waited for synchronously
  * @trig_wd:	the data-ready trigger's watchdog: armed with each sample it
  *		starts, it restarts a sample whose INT1 edge never came and
  *		retries a start that failed, so that the trigger never stalls
- * @trig_fired:	INT1 fired for the data-ready trigger's sample in flight;
- *		cleared under @lock before a sample starts, set locklessly
- *		by the INT1 handler
- * @stop_wq:	wakes the data-ready trigger's wait for its next sampling
- *		period when the trigger stops
+ * @trig_timer:	wakes the data-ready trigger when its next sample is due
+ * @trig_work:	starts the data-ready trigger's next sample (bus access:
+ *		process context, queued by @trig_timer)
+ * @trig_state:	enum as9888_trig_state. Set under @lock, but for the step
+ *		from MEASURING to FIRED, which the INT1 handler takes
+ *		locklessly (atomic_cmpxchg() against the watchdog's abort)
  * @gap_wq:	wakes whoever waits for the gap between two samples of the
  *		data-ready trigger
  * @drdy_time:	ktime of the last INT1 edge (the chip entered power-down)
  * @drdy_ts:	IIO timestamp of the last INT1 edge, per device (each has
- *		its own clock), for measurements waited for synchronously
- * @trig_running: the data-ready trigger runs; written under @lock, read
- *		locklessly while waiting for the next sampling period
+ *		its own clock), for measurements waited for synchronously.
+ *		The INT1 handler writes @drdy_time and @drdy_ts once per
+ *		measurement (see @irq_seq), and they are read under @lock
+ *		after the edge: the next write needs a new measurement, which
+ *		only a holder of @lock starts, so a 64-bit value never tears
+ *		on a 32-bit machine
+ * @trig_running: the data-ready trigger is enabled (a buffer is attached
+ *		to it), under @lock
  * @gap_waiters: how many wait for the gap between two samples of the
- *		data-ready trigger; written under @lock, read locklessly by
- *		the trigger before it starts its next sample
- * @trig_busy:	a sample of the data-ready trigger is in flight or its
- *		handlers are not done with it: the chip is not free for
- *		anything else. Written under @lock, read locklessly by the
- *		INT1 handler (which then polls the trigger instead of
- *		completing @drdy)
+ *		data-ready trigger; the trigger starts no sample while one
+ *		is counted, under @lock
  * @lock:	serialises every register access sequence of the driver and
  *		protects the fields below. A measurement is a sequence (mode
  *		write, wait, burst read) that must not interleave with another
  *		one or with a trim write, which the chip accepts in power-down
- *		only. With @lock held and @trig_busy clear, the chip is in
+ *		only. With @lock held and @trig_state IDLE, the chip is in
  *		power-down. Taken after the IIO direct-mode claim and after a
  *		runtime PM reference, never before them.
  * @pd_since:	when the chip last entered power-down (t_PD reference)
  * @last_start:	when the last measurement was started
- * @trig_slot:	when the data-ready trigger's current sample was due; the
- *		next one is due a period later, so lateness does not add up
- * @trig_gen:	counts the starts of the data-ready trigger
+ * @trig_due:	when each sensor's next sample of the data-ready trigger is
+ *		due: a period after the last one was due, so lateness does
+ *		not add up
  * @trig_users:	sensors whose buffer runs on the data-ready trigger
- * @trig_resume: the data-ready trigger ran when the system suspended
+ * @trig_take:	sensors whose sample the trigger's current one is
  * @trig_retry:	the data-ready trigger could not start its next sample: the
  *		watchdog tries again
  * @suspended:	the system is suspending or asleep: no measurement starts
@@ -154,7 +171,7 @@ enum as9888_sensor_id {
  *		read once for both devices
  * @trig_err:	the result of reading and checking @trig_sample
  * @alpf:	accelerometer low-pass filter enabled
- * @samp_freq:	sampling frequency of the data-ready trigger, Hz
+ * @samp_freq:	the sampling frequency each device starts with, Hz
  * @cal:	accelerometer calibration (calibbias) applied to every
  *		accelerometer reading; zero after probe
  */
@@ -174,23 +191,22 @@ struct as9888_chip {
 	unsigned long irq_seq;
 	struct completion drdy;
 	struct delayed_work trig_wd;
-	bool trig_fired;
-	wait_queue_head_t stop_wq;
+	struct hrtimer trig_timer;
+	struct work_struct trig_work;
+	atomic_t trig_state;
 	wait_queue_head_t gap_wq;
 	ktime_t drdy_time;
 	s64 drdy_ts[AS9888_SENSORS];
 	bool trig_running;
-	bool trig_busy;
 	unsigned int gap_waiters;
 
 	/* Serialises the register access sequences, see @lock above */
 	struct mutex lock;
 	ktime_t pd_since;
 	ktime_t last_start;
-	ktime_t trig_slot;
-	unsigned int trig_gen;
+	ktime_t trig_due[AS9888_SENSORS];
 	unsigned long trig_users;
-	bool trig_resume;
+	unsigned long trig_take;
 	bool trig_retry;
 	bool suspended;
 	bool trig_unread;
@@ -207,10 +223,13 @@ struct as9888_sensor_desc;
  * struct as9888_sensor - what the IIO private data of each device starts with
  * @chip:	the chip
  * @desc:	which sensor of the chip the device is
+ * @samp_freq:	the device's sampling frequency on the data-ready trigger,
+ *		Hz, under chip->lock
  */
 struct as9888_sensor {
 	struct as9888_chip *chip;
 	const struct as9888_sensor_desc *desc;
+	int samp_freq;
 };
 
 /**
@@ -269,9 +288,6 @@ as9888_get_mount_matrix(const struct iio_dev *indio_dev,
 			const struct iio_chan_spec *chan);
 int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
 			      unsigned int writeval, unsigned int *readval);
-int as9888_read_samp_freq(struct as9888_chip *chip, int *val);
-int as9888_write_samp_freq(struct as9888_chip *chip, int freq);
-int as9888_read_samp_freq_avail(const int **vals, int *type, int *length);
 
 /* The accelerometer device, as9888_accel.c */
 extern const struct as9888_sensor_desc as9888_accel_desc;
@@ -285,9 +301,15 @@ struct iio_dev *as9888_sensor_alloc(struct as9888_chip *chip,
 				    const struct as9888_sensor_desc *desc);
 int as9888_trigger_setup(struct as9888_chip *chip);
 bool as9888_on_drdy_trigger(struct iio_dev *indio_dev);
-/* This runs with chip->lock held */
+/* These run with chip->lock held */
 int as9888_trig_sample(struct as9888_chip *chip,
 		       const struct as9888_raw_sample **s);
+void as9888_trig_kick(struct as9888_chip *chip);
+/* Each device's sampling_frequency on the data-ready trigger */
+int as9888_read_samp_freq(struct iio_dev *indio_dev, int *val);
+int as9888_write_samp_freq(struct iio_dev *indio_dev, int freq);
+int as9888_read_samp_freq_avail(struct iio_dev *indio_dev, const int **vals,
+				int *type, int *length);
 void as9888_trig_suspend(struct as9888_chip *chip);
 int as9888_trig_resume(struct as9888_chip *chip);
 

@@ -129,7 +129,7 @@ static int as9888_magn_read_raw(struct iio_dev *indio_dev,
 		*val2 = AS9888_MAGN_SCALE_DEN;
 		return IIO_VAL_FRACTIONAL;
 	case IIO_CHAN_INFO_SAMP_FREQ:
-		return as9888_read_samp_freq(chip, val);
+		return as9888_read_samp_freq(indio_dev, val);
 	default:
 		return -EINVAL;
 	}
@@ -143,7 +143,7 @@ static int as9888_magn_read_avail(struct iio_dev *indio_dev,
 	if (mask != IIO_CHAN_INFO_SAMP_FREQ)
 		return -EINVAL;
 
-	return as9888_read_samp_freq_avail(vals, type, length);
+	return as9888_read_samp_freq_avail(indio_dev, vals, type, length);
 }
 
 static int as9888_magn_write_raw(struct iio_dev *indio_dev,
@@ -153,7 +153,7 @@ static int as9888_magn_write_raw(struct iio_dev *indio_dev,
 	if (val2 || mask != IIO_CHAN_INFO_SAMP_FREQ)
 		return -EINVAL;
 
-	return as9888_write_samp_freq(as9888_iio_to_chip(indio_dev), val);
+	return as9888_write_samp_freq(indio_dev, val);
 }
 
 static int as9888_magn_write_raw_get_fmt(struct iio_dev *indio_dev,
@@ -378,8 +378,8 @@ static const struct iio_info as9888_magn_info = {
 
 /*
  * Fill the scan from a checked sample, false if it has no magnetometer
- * data: the first sample of the data-ready trigger after this device's
- * buffer started may have been started for the accelerometer alone (HST).
+ * data (HST: the chip did not measure it; the data-ready trigger gives
+ * this device only the samples it started with the magnetometer on).
  * A saturated axis (HOFL) reads -4096 or 4095 and is pushed as it is.
  */
 static bool as9888_magn_fill_scan(struct iio_dev *indio_dev,

@@ -385,7 +385,6 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 	chip->regmap = regmap;
 	chip->samp_freq = AS9888_SAMP_FREQ_DEFAULT;
 	init_completion(&chip->drdy);
-	init_waitqueue_head(&chip->stop_wq);
 	init_waitqueue_head(&chip->gap_wq);
 	dev_set_drvdata(dev, chip);
 

@@ -2,36 +2,49 @@
 /*
  * ALSEN AS9888: the data-ready trigger, shared by the accelerometer and the
  * magnetometer IIO devices, and what both devices share around it: their
- * allocation with a triggered buffer, the buffer set-up and the trigger
- * handler.
+ * allocation with a triggered buffer, the buffer set-up, the trigger
+ * handler and each device's sampling frequency.
  *
  * The chip has no output data rate: the trigger starts each measurement
- * itself, once per sampling period, and INT1 fires it when the sample is
- * ready. The sample is read once, by whichever device's handler runs first,
- * and each device takes its own channels from it. When the last handler is
- * done (the trigger's reenable op), the next measurement is started, with
- * the magnetometer on only while the magnetometer device's buffer runs on
- * the trigger.
+ * itself, when the next sample of one of its devices is due, and INT1
+ * fires it when the sample is ready. The sample is read once, by whichever
+ * device's handler runs first, and each device whose sample it is takes
+ * its own channels from it. Each device has its own sampling_frequency;
+ * the trigger measures at the union of their schedules, the magnetometer
+ * only in the samples of the magnetometer device. Two devices, one
+ * interrupt, a trigger of the chip that both may use: as kmx61 and
+ * st_lsm9ds0 do. For both to buffer on it at once the kernel needs
+ * CONFIG_IIO_CONSUMERS_PER_TRIGGER >= 2 (the default).
+ *
+ * A sample goes IDLE -> MEASURING (the MS write) -> FIRED (the INT1 edge,
+ * the trigger is polled) -> IDLE (the trigger's reenable op: every handler
+ * is done). The reenable op only re-arms: an hrtimer wakes the trigger when
+ * the next sample is due, and a work item starts it. A reenable that finds
+ * no FIRED sample (one left over from before the trigger stopped and
+ * started again) changes nothing.
  *
  * Everything else that needs the chip in power-down (a _raw read, the
  * self-test, a buffer on another trigger, an offset DAC write) waits for
  * the gap between two samples of the trigger (as9888_wait_gap(), in
- * as9888_chip.c): after the handlers are done with one sample and before
- * the next one starts. So a client of one sensor neither stops the other
+ * as9888_chip.c): IDLE. So a client of one sensor neither stops the other
  * sensor's buffer nor has to wait for it to end, and every sample is
  * compensated with the DAC value it was measured with.
  */
 
+#include <linux/array_size.h>
+#include <linux/atomic.h>
 #include <linux/bitfield.h>
 #include <linux/bitops.h>
 #include <linux/cleanup.h>
 #include <linux/device.h>
 #include <linux/err.h>
+#include <linux/hrtimer.h>
 #include <linux/interrupt.h>
 #include <linux/irq.h>
 #include <linux/jiffies.h>
 #include <linux/ktime.h>
 #include <linux/math64.h>
+#include <linux/minmax.h>
 #include <linux/mutex.h>
 #include <linux/pm_runtime.h>
 #include <linux/regmap.h>
@@ -56,10 +69,123 @@
  */
 #define AS9888_TRIG_WD_MS		1000
 
-/* The trigger's sampling period in ns; with chip->lock held */
-static u64 as9888_trig_period_ns(const struct as9888_chip *chip)
+/*
+ * Sampling frequencies. A rate is offered when its period leaves room for
+ * the sample, t_PD and the sample's bus transfers (a mode write and a
+ * 16-byte burst read take about 0.5 ms on I2C at 400 kHz): t_MAG for the
+ * magnetometer, and for the accelerometer too while the magnetometer
+ * device buffers on the trigger (its samples include the magnetometer);
+ * otherwise t_ACC, with the low-pass filter or without. So every rate
+ * offered is delivered: 100 Hz with the magnetometer, 125 Hz for the
+ * accelerometer alone with the filter, 400 Hz without.
+ */
+#define AS9888_BUS_BUDGET_US		1000
+#define AS9888_PERIOD_MIN_US(t)		((t) + AS9888_T_PD_US + \
+					 AS9888_BUS_BUDGET_US)
+
+static const int as9888_samp_freq_avail[] = {
+	1, 2, 5, 10, 20, 25, 50, 100, 125, 200, 250, 400,
+};
+
+static_assert(USEC_PER_SEC / 100 >= AS9888_PERIOD_MIN_US(AS9888_T_MAG_US));
+static_assert(USEC_PER_SEC / 125 >= AS9888_PERIOD_MIN_US(AS9888_T_ACC_LPF_US));
+static_assert(USEC_PER_SEC / 400 >= AS9888_PERIOD_MIN_US(AS9888_T_ACC_US));
+
+/* How many of the rates @id can have now; with chip->lock held */
+static unsigned int as9888_samp_freq_count(const struct as9888_chip *chip,
+					   enum as9888_sensor_id id)
 {
-	return div_u64(NSEC_PER_SEC, chip->samp_freq);
+	unsigned int t_us, n = 0;
+
+	if (id == AS9888_MAGN || chip->trig_users & BIT(AS9888_MAGN))
+		t_us = AS9888_T_MAG_US;
+	else
+		t_us = chip->alpf ? AS9888_T_ACC_LPF_US : AS9888_T_ACC_US;
+
+	while (n < ARRAY_SIZE(as9888_samp_freq_avail) &&
+	       USEC_PER_SEC / as9888_samp_freq_avail[n] >=
+	       AS9888_PERIOD_MIN_US(t_us))
+		n++;
+
+	return n;
+}
+
+/*
+ * The rate @sensor gets: the one written, or the fastest the chip allows
+ * now when that is less (the filter was turned on, the magnetometer joined
+ * the trigger); with chip->lock held
+ */
+static int as9888_samp_freq_of(const struct as9888_sensor *sensor)
+{
+	const struct as9888_chip *chip = sensor->chip;
+	unsigned int n = as9888_samp_freq_count(chip, sensor->desc->id);
+
+	return min(sensor->samp_freq, as9888_samp_freq_avail[n - 1]);
+}
+
+/* A device's sampling period on the trigger in ns; with chip->lock held */
+static u64 as9888_trig_period_ns(const struct as9888_chip *chip,
+				 enum as9888_sensor_id id)
+{
+	return div_u64(NSEC_PER_SEC,
+		       as9888_samp_freq_of(as9888_sensor(chip->iio[id])));
+}
+
+int as9888_read_samp_freq_avail(struct iio_dev *indio_dev, const int **vals,
+				int *type, int *length)
+{
+	struct as9888_sensor *sensor = as9888_sensor(indio_dev);
+
+	guard(mutex)(&sensor->chip->lock);
+	*vals = as9888_samp_freq_avail;
+	*length = as9888_samp_freq_count(sensor->chip, sensor->desc->id);
+	*type = IIO_VAL_INT;
+
+	return IIO_AVAIL_LIST;
+}
+
+int as9888_read_samp_freq(struct iio_dev *indio_dev, int *val)
+{
+	struct as9888_sensor *sensor = as9888_sensor(indio_dev);
+
+	guard(mutex)(&sensor->chip->lock);
+	*val = as9888_samp_freq_of(sensor);
+
+	return IIO_VAL_INT;
+}
+
+/*
+ * A new rate counts from the device's next sample on; one due later than
+ * a new, shorter period from now comes sooner. The other device keeps its
+ * rate.
+ */
+int as9888_write_samp_freq(struct iio_dev *indio_dev, int freq)
+{
+	struct as9888_sensor *sensor = as9888_sensor(indio_dev);
+	struct as9888_chip *chip = sensor->chip;
+	enum as9888_sensor_id id = sensor->desc->id;
+	unsigned int i, n;
+	ktime_t soonest;
+
+	guard(mutex)(&chip->lock);
+
+	n = as9888_samp_freq_count(chip, id);
+	for (i = 0; i < n; i++)
+		if (as9888_samp_freq_avail[i] == freq)
+			break;
+	if (i == n)
+		return -EINVAL;
+
+	sensor->samp_freq = freq;
+	if (chip->trig_users & BIT(id)) {
+		soonest = ktime_add_ns(ktime_get(),
+				       as9888_trig_period_ns(chip, id));
+		if (ktime_after(chip->trig_due[id], soonest))
+			chip->trig_due[id] = soonest;
+		as9888_trig_kick(chip);
+	}
+
+	return 0;
 }
 
 /* The handlers are done with the sample, or it never comes: the gap */
@@ -68,23 +194,41 @@ static void as9888_trig_gap(struct as9888_chip *chip)
 	lockdep_assert_held(&chip->lock);
 
 	chip->trig_unread = false;
-	WRITE_ONCE(chip->trig_busy, false);
+	atomic_set(&chip->trig_state, AS9888_TRIG_IDLE);
 	wake_up_all(&chip->gap_wq);
 }
 
-/* Start a measurement of the data-ready trigger; with chip->lock held */
-static int as9888_trig_measure(struct as9888_chip *chip)
+/*
+ * Start the sample due at @slot, for every device whose next sample is due
+ * by then, or by now when the sample is late, or within half its period
+ * of that (so that two devices' schedules fall into step instead of each
+ * taking the chip on its own). With chip->lock held and the trigger IDLE.
+ */
+static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 {
+	ktime_t by = max(slot, ktime_get());
+	unsigned long take = 0;
+	unsigned int id;
+	ktime_t now;
+	u64 period;
 	int ret;
 
 	lockdep_assert_held(&chip->lock);
 
-	/* Before the MS write: INT1 must find them set */
-	WRITE_ONCE(chip->trig_fired, false);
-	WRITE_ONCE(chip->trig_busy, true);
+	for (id = 0; id < AS9888_SENSORS; id++) {
+		if (!(chip->trig_users & BIT(id)))
+			continue;
+		period = as9888_trig_period_ns(chip, id);
+		if (ktime_before(chip->trig_due[id],
+				 ktime_add_ns(by, period / 2)))
+			take |= BIT(id);
+	}
+
+	/* Before the MS write: INT1 must find the sample MEASURING */
+	atomic_set(&chip->trig_state, AS9888_TRIG_MEASURING);
+	chip->trig_take = take;
 	chip->trig_unread = true;
-	ret = as9888_start(chip, AS9888_MS_SINGLE,
-			   chip->trig_users & BIT(AS9888_MAGN));
+	ret = as9888_start(chip, AS9888_MS_SINGLE, take & BIT(AS9888_MAGN));
 	if (ret) {
 		as9888_trig_gap(chip);
 		return ret;
@@ -93,28 +237,68 @@ static int as9888_trig_measure(struct as9888_chip *chip)
 	mod_delayed_work(system_power_efficient_wq, &chip->trig_wd,
 			 msecs_to_jiffies(AS9888_TRIG_WD_MS));
 
+	/* The next ones: a period on; a whole period behind, from now */
+	now = ktime_get();
+	for_each_set_bit(id, &take, AS9888_SENSORS) {
+		period = as9888_trig_period_ns(chip, id);
+		chip->trig_due[id] = ktime_add_ns(slot, period);
+		if (ktime_before(ktime_add_ns(chip->trig_due[id], period), now))
+			chip->trig_due[id] = now;
+	}
+
 	return 0;
 }
 
-/*
- * Start the next sample of the running trigger, trying a few times; when
- * every attempt fails the watchdog tries again later, so the buffer gets
- * samples again once the bus recovers. With chip->lock held.
- */
-static void as9888_trig_next(struct as9888_chip *chip)
+/* When the trigger's next sample is due; with chip->lock held, users set */
+static ktime_t as9888_trig_slot(const struct as9888_chip *chip)
 {
-	int i, ret = 0;
+	ktime_t slot = KTIME_MAX;
+	enum as9888_sensor_id id;
+
+	for (id = 0; id < AS9888_SENSORS; id++)
+		if (chip->trig_users & BIT(id) &&
+		    ktime_before(chip->trig_due[id], slot))
+			slot = chip->trig_due[id];
+
+	return slot;
+}
+
+/**
+ * as9888_trig_next() - the data-ready trigger's next sample
+ * @chip: chip state, with chip->lock held
+ *
+ * In the gap, with a device on the trigger and nobody waiting for the
+ * chip: start the next sample if it is due, else wake up when it is. A
+ * start that fails is tried a few times; when every attempt fails the
+ * watchdog tries again later, so the buffer gets samples again once the
+ * bus recovers.
+ *
+ * Return: 0, or the error of the last attempt to start the sample.
+ */
+static int as9888_trig_next(struct as9888_chip *chip)
+{
+	ktime_t slot;
+	int i, ret;
 
 	lockdep_assert_held(&chip->lock);
 
 	chip->trig_retry = false;
-	for (i = 0; i < AS9888_START_RETRIES && chip->trig_running; i++) {
-		ret = as9888_trig_measure(chip);
-		if (!ret)
-			return;
+	if (!chip->trig_running || chip->suspended || !chip->trig_users ||
+	    chip->gap_waiters ||
+	    atomic_read(&chip->trig_state) != AS9888_TRIG_IDLE)
+		return 0;
+
+	slot = as9888_trig_slot(chip);
+	if (ktime_after(slot, ktime_get())) {
+		hrtimer_start(&chip->trig_timer, slot, HRTIMER_MODE_ABS);
+		return 0;
 	}
-	if (!chip->trig_running)
-		return;
+
+	for (i = 0; i < AS9888_START_RETRIES; i++) {
+		ret = as9888_trig_measure(chip, slot);
+		if (!ret)
+			return 0;
+	}
 
 	dev_err_ratelimited(chip->dev,
 			    "data-ready trigger cannot start a sample (%d), retrying in %u ms\n",
@@ -122,13 +306,53 @@ static void as9888_trig_next(struct as9888_chip *chip)
 	chip->trig_retry = true;
 	mod_delayed_work(system_power_efficient_wq, &chip->trig_wd,
 			 msecs_to_jiffies(AS9888_TRIG_WD_MS));
+
+	return ret;
+}
+
+/**
+ * as9888_trig_kick() - have the data-ready trigger look at its schedule
+ * @chip: chip state, with chip->lock held
+ *
+ * After a change of its devices, their rates, or the end of a wait for
+ * the gap: in the gap, the work item decides (once the caller dropped the
+ * lock) whether a sample starts now or later.
+ */
+void as9888_trig_kick(struct as9888_chip *chip)
+{
+	lockdep_assert_held(&chip->lock);
+
+	if (chip->trig && chip->trig_running &&
+	    atomic_read(&chip->trig_state) == AS9888_TRIG_IDLE)
+		queue_work(system_highpri_wq, &chip->trig_work);
+}
+
+static void as9888_trig_work(struct work_struct *work)
+{
+	struct as9888_chip *chip = container_of(work, struct as9888_chip,
+						trig_work);
+
+	guard(mutex)(&chip->lock);
+	as9888_trig_next(chip);
+}
+
+/* The next sample is due: start it from process context */
+static enum hrtimer_restart as9888_trig_timer(struct hrtimer *timer)
+{
+	struct as9888_chip *chip = container_of(timer, struct as9888_chip,
+						trig_timer);
+
+	queue_work(system_highpri_wq, &chip->trig_work);
+
+	return HRTIMER_NORESTART;
 }
 
 /*
  * The watchdog of the data-ready trigger. A sample whose INT1 edge never
  * came (a glitch on the line, an edge lost by the interrupt controller)
  * would leave the trigger waiting for good, the buffer enabled and empty:
- * abort it and start the next one. A start that failed is tried again.
+ * abort it and go on with the next one. A start that failed is tried
+ * again.
  */
 static void as9888_trig_watchdog(struct work_struct *work)
 {
@@ -141,10 +365,7 @@ static void as9888_trig_watchdog(struct work_struct *work)
 	if (!chip->trig_running)
 		return;
 
-	if (chip->trig_busy) {
-		/* The edge came: the handlers have the sample */
-		if (READ_ONCE(chip->trig_fired))
-			return;
+	if (atomic_read(&chip->trig_state) == AS9888_TRIG_MEASURING) {
 		/* A sample started after the timer was due re-armed it */
 		left_ms = AS9888_TRIG_WD_MS -
 			  ktime_ms_delta(ktime_get(), chip->last_start);
@@ -153,52 +374,58 @@ static void as9888_trig_watchdog(struct work_struct *work)
 					 &chip->trig_wd, msecs_to_jiffies(left_ms));
 			return;
 		}
+		/* Unless the edge comes right now */
+		if (atomic_cmpxchg(&chip->trig_state, AS9888_TRIG_MEASURING,
+				   AS9888_TRIG_IDLE) != AS9888_TRIG_MEASURING)
+			return;
 		dev_warn_ratelimited(chip->dev,
 				     "data-ready trigger: no %s edge %u ms after a sample started, restarting\n",
 				     chip->int_pin->name, AS9888_TRIG_WD_MS);
 		as9888_power_down(chip);
 		as9888_trig_gap(chip);
 	} else if (!chip->trig_retry) {
-		/* Between two samples: the next one is on its way */
+		/* The handlers have the sample, or the next one is on its way */
 		return;
 	}
 
 	as9888_trig_next(chip);
-	chip->trig_slot = chip->last_start;
 }
 
-static int as9888_trig_start(struct as9888_chip *chip)
+/* Stop sampling: abort a measurement in flight; with chip->lock held */
+static int as9888_trig_halt(struct as9888_chip *chip)
 {
 	int ret;
 
 	lockdep_assert_held(&chip->lock);
 
-	WRITE_ONCE(chip->trig_running, true);
-	chip->trig_gen++;
-	ret = as9888_trig_measure(chip);
-	if (ret)
-		WRITE_ONCE(chip->trig_running, false);
-	chip->trig_slot = chip->last_start;
-
-	return ret;
-}
-
-static int as9888_trig_stop(struct as9888_chip *chip)
-{
-	int ret;
-
-	lockdep_assert_held(&chip->lock);
-
-	WRITE_ONCE(chip->trig_running, false);
 	chip->trig_retry = false;
-	wake_up(&chip->stop_wq);
+	hrtimer_try_to_cancel(&chip->trig_timer);
+	if (atomic_read(&chip->trig_state) == AS9888_TRIG_IDLE)
+		return 0;
 
-	/* Abort a measurement in flight; a handler still to run finds none */
+	/* A handler still to run finds no sample (as9888_trig_sample()) */
 	ret = as9888_power_down(chip);
-	chip->trig_err = -ENODATA;
 	as9888_trig_gap(chip);
 
 	return ret;
+}
+
+/*
+ * The IIO core enables the trigger with its first consumer and disables it
+ * with its last; which devices' samples it takes, the buffers say
+ * (as9888_buffer_postenable()).
+ */
+static int as9888_trig_set_state(struct iio_trigger *trig, bool state)
+{
+	struct as9888_chip *chip = iio_trigger_get_drvdata(trig);
+
+	guard(mutex)(&chip->lock);
+
+	chip->trig_running = state;
+	if (state)
+		return 0;
+
+	return as9888_trig_halt(chip);
 }
 
 /**
@@ -207,21 +434,25 @@ static int as9888_trig_stop(struct as9888_chip *chip)
  * @s: the sample
  *
  * The first handler to run after an INT1 edge reads the sample; the other
- * device's handler gets the same one.
+ * device's handler gets the same one. A handler that runs for no FIRED
+ * sample (the trigger stopped meanwhile) gets none.
  *
- * Return: 0 or the error of reading or checking the sample.
+ * Return: 0, -ENODATA, or the error of reading or checking the sample.
  */
 int as9888_trig_sample(struct as9888_chip *chip,
 		       const struct as9888_raw_sample **s)
 {
 	lockdep_assert_held(&chip->lock);
 
+	if (atomic_read(&chip->trig_state) != AS9888_TRIG_FIRED)
+		return -ENODATA;
+
 	if (chip->trig_unread) {
 		chip->trig_err = as9888_read_sample(chip, &chip->trig_sample);
 		if (!chip->trig_err)
 			chip->trig_err = as9888_check_sample(chip,
 							     &chip->trig_sample);
-		chip->pd_since = chip->drdy_time;
+		chip->pd_since = READ_ONCE(chip->drdy_time);
 		chip->trig_unread = false;
 	}
 	*s = &chip->trig_sample;
@@ -231,55 +462,29 @@ int as9888_trig_sample(struct as9888_chip *chip,
 
 /*
  * The trigger's reenable op: every device's handler is done with the
- * sample. Wait for the rest of the sampling period (the wait ends early
- * when the trigger stops), then start the next measurement, whose INT1
- * edge fires the trigger again. It runs in the last handler's thread or a
- * work item, never in interrupt context. A trigger stopped and started
- * again meanwhile (a new generation) has its own first sample under way.
+ * sample. It only re-arms: the gap begins, and the next sample starts when
+ * it is due (as9888_trig_next()). It runs in the last handler's thread, or
+ * in a work item when the last to finish was a consumer slot without a
+ * handler; one left over from before the trigger stopped and started again
+ * finds no FIRED sample and does nothing.
  */
 static void as9888_trig_reenable(struct iio_trigger *trig)
 {
 	struct as9888_chip *chip = iio_trigger_get_drvdata(trig);
-	unsigned int gen;
-	ktime_t next, now;
-	u64 period;
-	s64 wait_ns;
-
-	scoped_guard(mutex, &chip->lock) {
-		if (!chip->trig_running)
-			return;
-		gen = chip->trig_gen;
-		as9888_trig_gap(chip);
-		period = as9888_trig_period_ns(chip);
-		next = ktime_add_ns(chip->trig_slot, period);
-		now = ktime_get();
-		/* a whole period behind: start a new schedule from now */
-		if (ktime_before(ktime_add_ns(next, period), now))
-			next = now;
-		chip->trig_slot = next;
-	}
-
-	wait_ns = ktime_to_ns(ktime_sub(next, ktime_get()));
-	if (wait_ns > 0)
-		wait_event_hrtimeout(chip->stop_wq,
-				     !READ_ONCE(chip->trig_running),
-				     ns_to_ktime(wait_ns));
-
-	/*
-	 * The gap is handed over to whoever waits for it, see
-	 * as9888_wait_gap(). Bounded: every waiter leaves within its own
-	 * deadline (two periods and the slack, then one measurement).
-	 */
-	wait_event(chip->gap_wq, !READ_ONCE(chip->gap_waiters));
 
 	guard(mutex)(&chip->lock);
-	if (chip->trig_gen == gen)
-		as9888_trig_next(chip);
+
+	if (atomic_read(&chip->trig_state) != AS9888_TRIG_FIRED)
+		return;
+
+	as9888_trig_gap(chip);
+	as9888_trig_next(chip);
 }
 
 static const struct iio_trigger_ops as9888_trigger_ops = {
 	/* Both devices of the chip share the bus device as parent */
 	.validate_device = iio_trigger_validate_own_device,
+	.set_trigger_state = as9888_trig_set_state,
 	.reenable = as9888_trig_reenable,
 };
 
@@ -298,10 +503,20 @@ static int as9888_buffer_preenable(struct iio_dev *indio_dev)
 	return pm_runtime_resume_and_get(as9888_iio_to_chip(indio_dev)->dev);
 }
 
+/*
+ * The trigger runs (as9888_trig_set_state()); from now on it takes this
+ * device's samples too: the first one at once, or with the other device's
+ * next one when that comes within a period, so that the two are in step
+ * from the start. A failure to start the trigger fails the buffer's
+ * enable.
+ */
 static int as9888_buffer_postenable(struct iio_dev *indio_dev)
 {
 	struct as9888_sensor *sensor = as9888_sensor(indio_dev);
+	enum as9888_sensor_id id = sensor->desc->id;
 	struct as9888_chip *chip = sensor->chip;
+	ktime_t now, due;
+	u64 period;
 	int ret;
 
 	if (!as9888_on_drdy_trigger(indio_dev))
@@ -309,14 +524,17 @@ static int as9888_buffer_postenable(struct iio_dev *indio_dev)
 
 	guard(mutex)(&chip->lock);
 
-	/* A running trigger measures the magnetometer from its next sample */
-	chip->trig_users |= BIT(sensor->desc->id);
-	if (chip->trig_running)
-		return 0;
-
-	ret = as9888_trig_start(chip);
+	/* The other device's next sample, if any */
+	due = as9888_trig_slot(chip);
+	now = ktime_get();
+	period = as9888_trig_period_ns(chip, id);
+	if (ktime_before(due, now) || ktime_after(due, ktime_add_ns(now, period)))
+		due = now;
+	chip->trig_users |= BIT(id);
+	chip->trig_due[id] = due;
+	ret = as9888_trig_next(chip);
 	if (ret)
-		chip->trig_users &= ~BIT(sensor->desc->id);
+		chip->trig_users &= ~BIT(id);
 
 	return ret;
 }
@@ -330,12 +548,9 @@ static int as9888_buffer_predisable(struct iio_dev *indio_dev)
 		return 0;
 
 	guard(mutex)(&chip->lock);
-
 	chip->trig_users &= ~BIT(sensor->desc->id);
-	if (chip->trig_users || !chip->trig_running)
-		return 0;
 
-	return as9888_trig_stop(chip);
+	return 0;
 }
 
 static int as9888_buffer_postdisable(struct iio_dev *indio_dev)
@@ -354,8 +569,8 @@ static const struct iio_buffer_setup_ops as9888_buffer_ops = {
 
 /*
  * The trigger handler of both devices: the sample of the data-ready
- * trigger's edge, or one measured for this device alone on another
- * trigger, goes to the device's buffer.
+ * trigger's edge, when it is one of this device's, or one measured for
+ * this device alone on another trigger, goes to the device's buffer.
  */
 static irqreturn_t as9888_trigger_handler(int irq, void *p)
 {
@@ -372,6 +587,9 @@ static irqreturn_t as9888_trigger_handler(int irq, void *p)
 	scoped_guard(mutex, &chip->lock) {
 		if (as9888_on_drdy_trigger(indio_dev)) {
 			ret = as9888_trig_sample(chip, &s);
+			/* a sample due for the other device only */
+			if (!(chip->trig_take & BIT(desc->id)))
+				ret = -ENODATA;
 		} else {
 			s = &own;
 			ret = as9888_measure(chip, desc->id, AS9888_MS_SINGLE,
@@ -382,16 +600,16 @@ static irqreturn_t as9888_trigger_handler(int irq, void *p)
 			desc->push(indio_dev, s, ts);
 	}
 
-	/* The last device done with the sample starts the next one */
+	/* The last device done with the sample re-arms the trigger */
 	iio_trigger_notify_done(indio_dev->trig);
 
 	return IRQ_HANDLED;
 }
 
 /*
- * sampling_frequency is that of the data-ready trigger: without INT1 the
- * buffer runs on another trigger, which sets the rate, so the channels go
- * without it.
+ * sampling_frequency is the device's rate on the data-ready trigger:
+ * without INT1 the buffer runs on another trigger, which sets the rate, so
+ * the channels go without it.
  */
 static const struct iio_chan_spec *
 as9888_channels_for(struct as9888_chip *chip, const struct iio_chan_spec *tmpl,
@@ -437,6 +655,7 @@ struct iio_dev *as9888_sensor_alloc(struct as9888_chip *chip,
 	sensor = iio_priv(indio_dev);
 	sensor->chip = chip;
 	sensor->desc = desc;
+	sensor->samp_freq = chip->samp_freq;
 
 	indio_dev->name = desc->name;
 	indio_dev->info = desc->info;
@@ -460,35 +679,39 @@ struct iio_dev *as9888_sensor_alloc(struct as9888_chip *chip,
 }
 
 /*
- * System sleep: a running data-ready trigger is stopped over it, and no
+ * System sleep: a running data-ready trigger pauses over it, and no
  * measurement starts until resume (chip->suspended). Once the lock is
  * dropped here, no handler is in a register access sequence and none will
- * start one; the watchdog has nothing to restart.
+ * start one; the watchdog and the work item have nothing to start.
  */
 void as9888_trig_suspend(struct as9888_chip *chip)
 {
 	scoped_guard(mutex, &chip->lock) {
 		chip->suspended = true;
-		chip->trig_resume = chip->trig_running;
-		if (chip->trig_resume)
-			as9888_trig_stop(chip);
+		if (chip->trig_running)
+			as9888_trig_halt(chip);
 	}
 
-	if (chip->trig)
+	if (chip->trig) {
+		hrtimer_cancel(&chip->trig_timer);
+		cancel_work_sync(&chip->trig_work);
 		cancel_delayed_work_sync(&chip->trig_wd);
+	}
 }
 
+/* Each device's next sample is due at once */
 int as9888_trig_resume(struct as9888_chip *chip)
 {
+	enum as9888_sensor_id id;
+	ktime_t now = ktime_get();
+
 	guard(mutex)(&chip->lock);
 
 	chip->suspended = false;
-	if (!chip->trig_resume)
-		return 0;
+	for (id = 0; id < AS9888_SENSORS; id++)
+		chip->trig_due[id] = now;
 
-	chip->trig_resume = false;
-
-	return as9888_trig_start(chip);
+	return as9888_trig_next(chip);
 }
 
 /*
@@ -500,19 +723,28 @@ int as9888_trig_resume(struct as9888_chip *chip)
 static irqreturn_t as9888_drdy_irq(int irq, void *private)
 {
 	struct as9888_chip *chip = private;
+	unsigned long seq = READ_ONCE(chip->meas_seq);
 	enum as9888_sensor_id id;
 
-	chip->drdy_time = ktime_get();
-	chip->irq_seq = READ_ONCE(chip->meas_seq);
+	/*
+	 * No measurement since the last edge: not the chip's data ready (its
+	 * pin while runtime suspend has cut the supplies, a glitch), so that
+	 * a storm of them is caught as spurious
+	 */
+	if (seq == READ_ONCE(chip->irq_seq))
+		return IRQ_NONE;
 
-	if (READ_ONCE(chip->trig_busy)) {
-		WRITE_ONCE(chip->trig_fired, true);
+	WRITE_ONCE(chip->drdy_time, ktime_get());
+	WRITE_ONCE(chip->irq_seq, seq);
+
+	if (atomic_cmpxchg(&chip->trig_state, AS9888_TRIG_MEASURING,
+			   AS9888_TRIG_FIRED) == AS9888_TRIG_MEASURING) {
 		iio_trigger_poll(chip->trig);
 		return IRQ_HANDLED;
 	}
 
 	for (id = 0; id < AS9888_SENSORS; id++)
-		chip->drdy_ts[id] = iio_get_time_ns(chip->iio[id]);
+		WRITE_ONCE(chip->drdy_ts[id], iio_get_time_ns(chip->iio[id]));
 	complete(&chip->drdy);
 
 	return IRQ_HANDLED;
@@ -521,7 +753,8 @@ static irqreturn_t as9888_drdy_irq(int irq, void *private)
 /* Level-triggered: the same, then the thread deasserts the pin */
 static irqreturn_t as9888_drdy_irq_level(int irq, void *private)
 {
-	as9888_drdy_irq(irq, private);
+	if (as9888_drdy_irq(irq, private) == IRQ_NONE)
+		return IRQ_NONE;
 
 	return IRQ_WAKE_THREAD;
 }
@@ -539,17 +772,22 @@ static irqreturn_t as9888_drdy_thread(int irq, void *private)
 
 	guard(mutex)(&chip->int_lock);
 
-	if (chip->meas_seq == chip->irq_seq)
+	if (chip->meas_seq == READ_ONCE(chip->irq_seq))
 		regmap_read(chip->regmap, chip->int_pin->st_reg, &st);
 
 	return IRQ_HANDLED;
 }
 
-/* Removal: the trigger is stopped, its watchdog may still be pending */
-static void as9888_trig_wd_cancel(void *arg)
+/*
+ * Removal: the trigger is stopped (no timer, work item or watchdog arms
+ * another), but they may still be pending
+ */
+static void as9888_trig_cancel(void *arg)
 {
 	struct as9888_chip *chip = arg;
 
+	hrtimer_cancel(&chip->trig_timer);
+	cancel_work_sync(&chip->trig_work);
 	cancel_delayed_work_sync(&chip->trig_wd);
 }
 
@@ -604,7 +842,10 @@ int as9888_trigger_setup(struct as9888_chip *chip)
 	iio_trigger_set_drvdata(chip->trig, chip);
 
 	INIT_DELAYED_WORK(&chip->trig_wd, as9888_trig_watchdog);
-	ret = devm_add_action_or_reset(dev, as9888_trig_wd_cancel, chip);
+	INIT_WORK(&chip->trig_work, as9888_trig_work);
+	hrtimer_setup(&chip->trig_timer, as9888_trig_timer, CLOCK_MONOTONIC,
+		      HRTIMER_MODE_ABS);
+	ret = devm_add_action_or_reset(dev, as9888_trig_cancel, chip);
 	if (ret)
 		return ret;
 

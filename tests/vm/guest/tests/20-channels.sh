@@ -3,7 +3,7 @@
 # reads compensated values on 1024 LSB per g: with the calibration the
 # unit implies (its offsets at 25 degC), 0 on the horizontal axes and 1024
 # on the vertical one.
-plan 29
+plan 34
 set_unit "temperature = 31.25" "offset = 40 -25 60" "noise = 0"
 check "device back after a new unit" wait_dev 5
 raw=$(cat $DEV/in_temp_raw); off=$(cat $DEV/in_temp_offset); sc=$(cat $DEV/in_temp_scale)
@@ -85,15 +85,34 @@ eq "as9888-magn: scan elements magn 0-2, timestamp 3" "$(scan $MDEV)" \
 	"in_magn_x:0 in_magn_y:1 in_magn_z:2 in_timestamp:3 "
 eq "as9888-magn: the scan type of the magnetometer, s13 in 16 bits" \
 	"$(cat $(se_dir $MDEV)/in_magn_[xyz]_type | sort -u)" "le:s13/16>>0"
-# the chip has one rate: set on either device, both show it
-echo 50 > $MDEV/sampling_frequency
-eq "sampling_frequency set on the magn device: the accel device shows it" \
-	"$(cat $DEV/sampling_frequency)" "$(cat $MDEV/sampling_frequency)"
+# each device has its own rate on the data-ready trigger (issue 24, point
+# 4): a write on one does not retime the other
 echo 100 > $DEV/sampling_frequency
-eq "sampling_frequency set on the accel device: the magn device shows it" \
-	"$(cat $MDEV/sampling_frequency)" "$(cat $DEV/sampling_frequency)"
-eq "the same sampling_frequency_available on both" \
-	"$(cat $MDEV/sampling_frequency_available)" "$(cat $DEV/sampling_frequency_available)"
+echo 50 > $MDEV/sampling_frequency
+eq "sampling_frequency on the magn device: 50" "$(cat $MDEV/sampling_frequency)" 50
+eq "sampling_frequency on the magn device does not retime the accel device" \
+	"$(cat $DEV/sampling_frequency)" 100
+echo 100 > $MDEV/sampling_frequency
+# the rates offered are the rates the chip delivers: t_MAG 7.3 ms for the
+# magnetometer, t_ACC 1.2 ms for the accelerometer alone (4.8 ms with the
+# low-pass filter), each plus t_PD and the bus
+eq "magn rates up to 100 Hz" "$(cat $MDEV/sampling_frequency_available)" \
+	"1 2 5 10 20 25 50 100"
+_osr=$(cat $DEV/in_accel_oversampling_ratio)
+echo 1 > $DEV/in_accel_oversampling_ratio
+eq "accel rates without the filter up to 400 Hz" "$(cat $DEV/sampling_frequency_available)" \
+	"1 2 5 10 20 25 50 100 125 200 250 400"
+echo 400 > $DEV/sampling_frequency
+echo 4 > $DEV/in_accel_oversampling_ratio
+eq "accel rates with the filter up to 125 Hz" "$(cat $DEV/sampling_frequency_available)" \
+	"1 2 5 10 20 25 50 100 125"
+eq "accel at 400 Hz reads 125 Hz, the rate delivered, with the filter" \
+	"$(cat $DEV/sampling_frequency)" 125
+check_not "accel: 400 Hz refused with the filter" sh -c "echo 400 > $DEV/sampling_frequency"
+echo 1 > $DEV/in_accel_oversampling_ratio
+eq "accel at 400 Hz again without the filter" "$(cat $DEV/sampling_frequency)" 400
+echo "$_osr" > $DEV/in_accel_oversampling_ratio
+echo 100 > $DEV/sampling_frequency
 # debugfs: selftest_readings moved to the magn device
 check "debugfs: selftest_readings on the magn device" \
 	test -e /sys/kernel/debug/iio/${MDEV##*/}/selftest_readings

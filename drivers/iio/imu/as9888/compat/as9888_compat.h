@@ -70,6 +70,22 @@ static inline int as9888_compat_put_autosuspend(struct device *dev)
 #define pm_runtime_put_autosuspend	as9888_compat_put_autosuspend
 #endif
 
+/* hrtimer_setup() replaces hrtimer_init() and setting .function in 6.13 */
+#if LINUX_VERSION_CODE < KERNEL_VERSION(6, 13, 0)
+#include <linux/hrtimer.h>
+
+static inline void
+as9888_compat_hrtimer_setup(struct hrtimer *timer,
+			    enum hrtimer_restart (*function)(struct hrtimer *),
+			    clockid_t clock_id, enum hrtimer_mode mode)
+{
+	hrtimer_init(timer, clock_id, mode);
+	timer->function = function;
+}
+
+#define hrtimer_setup			as9888_compat_hrtimer_setup
+#endif
+
 /* iio_for_each_active_channel() hides masklength since 6.12 */
 #ifndef iio_for_each_active_channel
 #include <linux/iio/iio.h>
