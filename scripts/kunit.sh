@@ -26,6 +26,9 @@ set -euo pipefail
 . "$(dirname "$0")/kernel-common.sh"
 
 select_kernels "$@"
+# One run at a time per cache: two runs in the same UML build directories
+# break each other (one's kunit.py rebuilds what the other is running)
+cache_lock kunit
 
 SRC_ROOT="$(cd "${AS9888_SRC:-$AS9888_REPO}" && pwd)"
 DRV="$SRC_ROOT/$AS9888_DRIVER_REL"

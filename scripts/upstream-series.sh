@@ -232,9 +232,13 @@ Kste, Ot(t) from a level-test offset and Kote, and one offset DAC code
 moves the output by 2048 / (gain + 16) LSB. The driver compensates every
 reading with the die temperature of the same burst, T = (176 - TMPS) /
 1.6 degC, and returns it on a constant scale of 1024 LSB per g, so that
-consumers need raw and scale only. The level-test calibration is loaded
-by userspace through caliboffset/calibtemp; the offset DAC is calibbias.
-The arithmetic is integer only, in its own unit, with a KUnit suite.
+consumers need raw and scale only. The level-test calibration is
+in_accel_X_calibbias, in output units (1/1024 g) as sysfs-bus-iio
+defines it: the driver realises it as the offset DAC code the datasheet's
+optimisation chooses plus a digital residual, and a chip reading at its
+rail is not compensated (-ERANGE on sysfs, the output limit in the
+buffer). The arithmetic is integer only, in its own unit linked into
+the core module, with a KUnit suite.
 
 Each sensor is an IIO device of its own, as in inv_icm42600 and
 st_lsm6dsx: "as9888-accel" (accelerometer and temperature) and
@@ -244,16 +248,20 @@ even one that enables every scan element of its device, must never make
 the chip measure it. Both devices share the chip's lock and one
 data-ready trigger: its sample is read once, each device takes its
 channels from it, and the next measurement starts, with the magnetometer
-on only while the magnetometer's buffer runs on the trigger, when both
-are done (the trigger's reenable op). A raw read, the self-test or an
-offset DAC write waits for the gap between two samples, so a client of
-one sensor neither stops nor waits for the other's buffer.
+on only while the magnetometer's buffer runs on the trigger. The
+trigger's reenable op only re-arms it; the next measurement is paced by
+an hrtimer, at the union of the two devices' own sampling frequencies
+(the accelerometer alone up to 400 Hz). Both devices on the shared
+trigger need CONFIG_IIO_CONSUMERS_PER_TRIGGER >= 2, as for kmx61 and
+st_lsm9ds0. A raw read, the self-test or a calibbias write waits for
+the gap between two samples, so a client of one sensor neither stops
+nor waits for the other's buffer.
 
 The driver provides:
 - accelerometer, magnetometer (with the EEPROM sensitivity adjustment
   in the scale) and temperature channels, and mount matrices;
-- triggered buffers with the chip's data-ready trigger when INT1 is
-  wired, any other trigger otherwise;
+- triggered buffers with the chip's data-ready trigger when INT1 or
+  INT2 is wired, any other trigger otherwise;
 - oversampling_ratio for the accelerometer filter (1 or 4);
 - the magnetometer self-test (MS = 0x08) and its judgment;
 - the EEPROM as a read-only NVMEM device;
@@ -293,14 +301,12 @@ maintainers_entry "$BIND_REL" "$DRV_REL/" "$ABI_REL" "$DOC_REL"
 commit "$(msg 4 <<'EOF'
 docs: iio: Add AS9888 sysfs ABI and driver documentation
 
-Document the attributes the AS9888 driver adds to the IIO ABI:
-in_accel_X_caliboffset and in_accel_calibtemp (the level-test
-calibration the driver compensates with), and selftest (the
-magnetometer self-test of the datasheet, with its judgment), and
-describe the driver: how the accelerometer reading is compensated
-from the EEPROM trim at the die temperature of each sample, the
-attributes and the buffer, the data-ready trigger and its rates,
-the EEPROM as NVMEM and power management.
+Document the one attribute the AS9888 driver adds to the IIO ABI,
+selftest (the magnetometer self-test of the datasheet, with its
+judgment), and describe the driver: how the accelerometer reading is
+compensated from the EEPROM trim at the die temperature of each
+sample, the attributes and the buffer, the data-ready trigger and its
+rates, the EEPROM as NVMEM and power management.
 EOF
 )"
 

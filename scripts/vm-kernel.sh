@@ -143,7 +143,17 @@ build_modules() {
 	fi
 	rm -rf "$stage/ko"
 	mkdir -p "$stage/ko"
-	find "$stage" -path "$stage/ko" -prune -o -name '*.ko' -print0 | xargs -0 -I{} cp {} "$stage/ko/"
+	# the modules this build made (modules.order: paths or objects, by
+	# kernel version), not a .ko an older tree left in the stage
+	local order m
+	for order in "$stage/modules.order" "$stage/tests/vm/adapter/modules.order"; do
+		while read -r m; do
+			m=${m%.o}
+			m=${m%.ko}.ko
+			case $m in /*) ;; *) m=$(dirname "$order")/$m ;; esac
+			cp "$m" "$stage/ko/" || die "$k: $m is in modules.order but was not built"
+		done <"$order"
+	done
 	log "$k: modules $(cd "$stage/ko" && ls | tr '\n' ' ')in $(since "$t")"
 }
 

@@ -3,7 +3,7 @@
 # reads compensated values on 1024 LSB per g: with the calibration the
 # unit implies (its offsets at 25 degC), 0 on the horizontal axes and 1024
 # on the vertical one.
-plan 34
+plan 33
 set_unit "temperature = 31.25" "offset = 40 -25 60" "noise = 0"
 check "device back after a new unit" wait_dev 5
 raw=$(cat $DEV/in_temp_raw); off=$(cat $DEV/in_temp_offset); sc=$(cat $DEV/in_temp_scale)
