@@ -180,7 +180,8 @@ int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 	if (!base || !is_iio_device(base + 1))
 		return -EINVAL;
 	/* The chip's only NVMEM provider, numbered by the NVMEM core */
-	snprintf(bus, sizeof(bus), "%s/..", dir);
+	if ((size_t)snprintf(bus, sizeof(bus), "%s/..", dir) >= sizeof(bus))
+		return -ENAMETOOLONG;
 	d = opendir(bus);
 	if (!d)
 		return -errno;
@@ -189,7 +190,11 @@ int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 		if (strncmp(de->d_name, IIO_EEPROM_PREFIX,
 			    strlen(IIO_EEPROM_PREFIX)))
 			continue;
-		snprintf(path, sizeof(path), "%s/%s/nvmem", bus, de->d_name);
+		if ((size_t)snprintf(path, sizeof(path), "%s/%s/nvmem", bus,
+				     de->d_name) >= sizeof(path)) {
+			fd = -ENAMETOOLONG;
+			break;
+		}
 		fd = open(path, O_RDONLY | O_CLOEXEC);
 		if (fd < 0)
 			fd = -errno;
