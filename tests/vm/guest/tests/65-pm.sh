@@ -4,7 +4,7 @@
 # the DAC (from calibbias), the trim and INT1EN are back in the chip and
 # the calibration (calibbias) is unchanged.
 # System sleep is tested in 66-pm-wiring (pm_test=devices with freeze).
-plan 29
+plan 27
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 PM=$(readlink -f $DEV)/../power
