@@ -49,10 +49,22 @@ fi
 
 # suite LOG: build and run the suite in the scratch copy; 0 = passed, 200 =
 # the build failed
+# The tests that judge a mutant: the whole suite but the attack and
+# storage tests (the record's files, locks and journal, the service's
+# sockets, the package install: they exercise neither the arithmetic nor
+# the engine, and take minutes; flood.sh also runs as another user, who
+# cannot enter this scratch directory)
+skip_tests=" save_inject daemon_hostile storage_trust uevent_storm activation flood install "
 suite() {
+	local tests=() t
 	ninja -C "$build" >"$1" 2>&1 || return 200
+	while read -r t; do
+		case $skip_tests in *" ${t##* / } "*) continue ;; esac
+		tests+=("${t##* / }")
+	done < <(meson test -C "$build" --no-rebuild --list 2>/dev/null)
+	[ ${#tests[@]} -gt 0 ] || return 200
 	meson test -C "$build" --no-rebuild --maxfail 1 --num-processes "$jobs" \
-		>>"$1" 2>&1
+		"${tests[@]}" >>"$1" 2>&1
 }
 
 t0=$(date +%s)
