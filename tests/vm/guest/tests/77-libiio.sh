@@ -2,7 +2,7 @@
 # libiio's own clients (iio_info, iio_attr, iio_readdev, Debian's
 # libiio-utils 0.24) on the local backend: what they list, read, write and
 # capture.
-plan 53
+plan 50
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 set_cal 0 0 0 25000
