@@ -25,7 +25,7 @@
 # Also: the knobs do not re-create the chip or the device; in_accel_scale
 # is the same string at every temperature; no removed attribute is left;
 # no client of the grid makes the chip measure the magnetometer.
-plan 85
+plan 89
 CALIBD=/bin/as9888-calibd
 TOL=8
 W=/tmp/cg

@@ -8,7 +8,7 @@
 # a record of another chip, and a record of the simulator (source =
 # simulator: a simulated calibration is never applied to a chip).
 # Leaves /tmp/rec and /tmp/unit.txt for 82 and 85.
-plan 18
+plan 19
 load_sim
 load_driver
 U="temperature = 25
