@@ -6,7 +6,7 @@
 # check,
 # recalibrate after a "shock" and rollback, also as daemon requests; every
 # fault fails at its step; the device's attributes are left as found.
-plan 51
+plan 52
 CALIBD=/bin/as9888-calibd
 U84="temperature = 25
 offset = 40 -25 60
