@@ -221,7 +221,9 @@ boot() {
 	grep -a '^BOOTTEST' "$work/$1.log" | tr -d '\r' || true
 	if grep -aq '^BOOTTEST done' "$work/$1.log"; then
 		local plan made
-		plan=$(tr -d '\r' <"$work/$1.log" | sed -n 's/^BOOTTEST plan \([0-9]*\)$/\1/p' | head -n1)
+		# (the plan is the guest's first line: under systemd the console's
+		# reset sequences stand before it on the line)
+		plan=$(tr -d '\r' <"$work/$1.log" | sed -n 's/^.*BOOTTEST plan \([0-9]*\)$/\1/p' | head -n1)
 		made=$(grep -acE '^BOOTTEST (not )?ok - ' "$work/$1.log" || true)
 		[ -n "$plan" ] && [ "$plan" -eq "$made" ] ||
 			echo "BOOTTEST not ok - $1: $made checks made, the guest's plan says ${plan:-nothing}"
