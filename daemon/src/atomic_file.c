@@ -90,9 +90,21 @@ int atomic_begin(struct atomic_pending *p, const char *path, mode_t mode,
 		ret = failed(err, errlen, "cannot stat", path, errno);
 	}
 
-	/* a leftover of an interrupted save is ours to remove */
-	if (!ret && unlinkat(p->dfd, p->tmp, 0) && errno != ENOENT)
-		ret = failed(err, errlen, "cannot remove stale", p->tmp, errno);
+	/*
+	 * A leftover of an interrupted save is ours to remove: a regular file
+	 * of our own user. Anything else (another user's file in a shared,
+	 * sticky directory) stays, and the save is refused.
+	 */
+	if (!ret && fstatat(p->dfd, p->tmp, &st, AT_SYMLINK_NOFOLLOW) == 0) {
+		if (!S_ISREG(st.st_mode) || st.st_uid != geteuid()) {
+			snprintf(err, errlen,
+				 "%s/%s is in the way and not a file of ours: move it away",
+				 dir, p->tmp);
+			ret = -EEXIST;
+		} else if (unlinkat(p->dfd, p->tmp, 0) && errno != ENOENT) {
+			ret = failed(err, errlen, "cannot remove stale", p->tmp, errno);
+		}
+	}
 	if (!ret) {
 		p->fd = openat(p->dfd, p->tmp, O_WRONLY | O_CREAT | O_EXCL |
 			       O_NOFOLLOW | O_CLOEXEC, mode);

@@ -158,6 +158,12 @@ ln "$work/old.xml" "$work/hardlink.xml"
 check "--junit naming a report with another hard link: refused, unchanged" \
 	eval 'junit_refused "$work/hardlink.xml" "other hard links" && cmp -s "$work/old.xml" "$work/pass.xml"'
 rm -f "$work/hardlink.xml"
+# a temporary file of another user in the way (a shared, sticky
+# directory): not removed, the run refused
+echo theirs >"$work/theirs.xml.new"
+chown 65534:65534 "$work/theirs.xml.new"
+check "--junit with another user's <report>.new in the way: refused, their file kept" \
+	eval 'junit_refused "$work/theirs.xml" "not a file of ours" && [ "$(cat "$work/theirs.xml.new")" = theirs ]'
 report again "fault = saturate_z" --junit "$work/old.xml"
 check "--junit naming an older report: replaced by the new one, no temporary file left" \
 	eval 'grep -q "failures=\"[1-9]" "$work/old.xml" && [ ! -e "$work/old.xml.new" ] &&
