@@ -63,8 +63,8 @@
 #define AS9888_GAIN_MAX			43
 #define AS9888_DAC_NEG_MAX		67	/* 0..67: linear code 0..-67 */
 #define AS9888_DAC_ZERO			0x80	/* reset value: linear code 0 */
-#define AS9888_DAC_POS_MAX		(AS9888_DAC_ZERO + 67)
-#define AS9888_DAC_LIN_MAX		67
+#define AS9888_DAC_LIN_MAX		AS9888_DAC_NEG_MAX	/* either side of 0 */
+#define AS9888_DAC_POS_MAX		(AS9888_DAC_ZERO + AS9888_DAC_LIN_MAX)
 #define AS9888_TMPS_MIN			0x28	/* 85 degC */
 #define AS9888_TMPS_MAX			0xe0	/* -30 degC */
 #define AS9888_TMPS_ZERO_DEGC		176

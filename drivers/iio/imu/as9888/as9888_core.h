@@ -171,7 +171,6 @@ enum as9888_sensor_id {
  *		read once for both devices
  * @trig_err:	the result of reading and checking @trig_sample
  * @alpf:	accelerometer low-pass filter enabled
- * @samp_freq:	the sampling frequency each device starts with, Hz
  * @cal:	accelerometer calibration (calibbias) applied to every
  *		accelerometer reading; zero after probe
  */
@@ -213,7 +212,6 @@ struct as9888_chip {
 	struct as9888_raw_sample trig_sample;
 	int trig_err;
 	bool alpf;
-	int samp_freq;
 	struct as9888_accel_cal cal;
 };
 

@@ -51,8 +51,6 @@
 
 #define AS9888_AUTOSUSPEND_MS		2000
 
-#define AS9888_SAMP_FREQ_DEFAULT	100
-
 static const char * const as9888_supply_names[AS9888_SUPPLIES] = {
 	"vdd", "vid",
 };
@@ -383,7 +381,6 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 
 	chip->dev = dev;
 	chip->regmap = regmap;
-	chip->samp_freq = AS9888_SAMP_FREQ_DEFAULT;
 	init_completion(&chip->drdy);
 	init_waitqueue_head(&chip->gap_wq);
 	dev_set_drvdata(dev, chip);

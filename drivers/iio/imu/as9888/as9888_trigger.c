@@ -83,6 +83,9 @@
 #define AS9888_PERIOD_MIN_US(t)		((t) + AS9888_T_PD_US + \
 					 AS9888_BUS_BUDGET_US)
 
+/* The rate each device starts with, Hz */
+#define AS9888_SAMP_FREQ_DEFAULT	100
+
 static const int as9888_samp_freq_avail[] = {
 	1, 2, 5, 10, 20, 25, 50, 100, 125, 200, 250, 400,
 };
@@ -655,7 +658,7 @@ struct iio_dev *as9888_sensor_alloc(struct as9888_chip *chip,
 	sensor = iio_priv(indio_dev);
 	sensor->chip = chip;
 	sensor->desc = desc;
-	sensor->samp_freq = chip->samp_freq;
+	sensor->samp_freq = AS9888_SAMP_FREQ_DEFAULT;
 
 	indio_dev->name = desc->name;
 	indio_dev->info = desc->info;
