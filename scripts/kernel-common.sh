@@ -151,6 +151,8 @@ dtschema_venv() {
 	[ -x "$venv/bin/dt-validate" ] && cmp -s "$reqs" "$venv/as9888-requirements.txt" &&
 		return 0
 	log "installing PyPI dtschema (pinned in $reqs) into $venv"
+	# pylibfdt comes as source only: it is compiled against Python's headers
+	ensure_pkgs python3-venv python3-dev gcc
 	rm -rf "$venv"
 	/usr/bin/python3 -m venv "$venv" || die "python3 -m venv $venv failed"
 	"$venv/bin/pip" install -q --no-deps -r "$reqs" ||
