@@ -125,6 +125,8 @@ if [ -n "$T" ]; then
 	echo 1 > $SE/in_accel_z_en
 	echo "$T" > $DEV/trigger/current_trigger
 	echo 64 > $DEV/buffer/length
+	# (no file of an earlier run: a buffer that does not start reads 0 scans)
+	rm -f /tmp/sat.bin
 	if echo 1 > $DEV/buffer/enable; then
 		timeout 30 head -c $((8 * 4)) /dev/iio:device${DEV##*iio:device} > /tmp/sat.bin
 		echo 0 > $DEV/buffer/enable
