@@ -211,7 +211,7 @@ if [ "$what" = all ]; then
 		"$top/scripts/kernel-trees.sh" all
 	stage "driver: W=1, sparse, checkpatch --strict on 6.1 and 7.2" \
 		"$top/scripts/kernel-build.sh" all
-	stage "upstream series on 7.2: git am, checkpatch, in-tree W=1 C=1, kernel-doc, ABI, dt_binding_check, htmldocs" \
+	stage "upstream series on 7.2: git am, checkpatch and in-tree W=1 C=1 at every patch, kernel-doc, ABI, dt_binding_check, htmldocs" \
 		"$top/scripts/upstream-series.sh"
 	stage "devicetree binding (dt-schema)" "$top/scripts/dt-check.sh"
 	stage "KUnit on 6.1 and 7.2 (UML)" kunit_suite
