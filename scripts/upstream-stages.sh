@@ -30,7 +30,10 @@
 #                  to the trees of FIRST-STAGE and every later stage in
 #                  TREESDIR; in each tree, the hunks of files it does not
 #                  have yet are left out (they reach the stage that adds
-#                  the file, whose tree has them from the repository).
+#                  the file), and so are hunks that do not apply: the code
+#                  they change comes with a later stage. Each left-out
+#                  hunk is listed, to be checked by the developer; one
+#                  left out of the last tree fails (pack would refuse it).
 #   pack TREESDIR  the inverse of trees: writes every stage's files and
 #                  changes.patch from TREESDIR/NN-name/ (a stage directory
 #                  needs its message first). The last tree must equal the
@@ -136,7 +139,7 @@ cmd_trees() {
 }
 
 cmd_carry() {
-	local diff in first s f ex started=0
+	local diff in first s f ex left="" started=0
 	diff="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
 	first="$2"
 	in="$(cd "$3" && pwd)"
@@ -148,13 +151,22 @@ cmd_carry() {
 		while IFS= read -r f; do
 			[ -f "$in/$s/$f" ] || ex+=("--exclude=$f")
 		done < <(sed -n 's|^+++ b/||p' "$diff" | sed 's/[[:space:]]*$//' | sort -u)
-		if ! (cd "$in/$s" && GIT_CEILING_DIRECTORIES="$in" \
-			git apply --whitespace=nowarn "${ex[@]}" "$diff") >"$in/.carry.log" 2>&1; then
-			sed 's/^/    /' "$in/.carry.log" >&2
-			die "stage $s: the diff does not apply to its tree; edit $in/$s by hand, then carry the rest from the next stage"
+		(cd "$in/$s" && GIT_CEILING_DIRECTORIES="$in" \
+			git apply -v --reject --whitespace=nowarn "${ex[@]}" "$diff") \
+			>"$in/.carry.log" 2>&1 || true
+		# "Applying patch F with N rejects...", then "Rejected hunk #K."
+		left=$(grep -E '^(Applying patch|Rejected hunk)' "$in/.carry.log" |
+			awk '/^Applying/ { f = $3; next }
+			     { h = $3; sub(/\.$/, "", h); print f " hunk " h }' || true)
+		find "$in/$s" -name '*.rej' -delete
+		if [ -n "$left" ]; then
+			log "$s: carried but for these hunks (code a later stage brings? check):"
+			printf '%s\n' "$left" | sed 's/^/    /'
+		else
+			log "$s: carried"
 		fi
-		log "$s: carried"
 	done
+	[ -z "$left" ] || die "the last stage, $s, must take the whole diff"
 	rm -f "$in/.carry.log"
 }
 

@@ -110,6 +110,31 @@ int as9888_accel_ug(s16 raw, s32 ot_q16, s32 st_q16, s32 *a_ug)
 	return 0;
 }
 
+/*
+ * The calibbias that an offset at t_RT with the factory DAC value stands
+ * for: -O / St_RT * 1024 output LSB, rounded to nearest. The inverse of
+ * as9888_bias_offset_q16() (which is exact; this rounds). -EINVAL for an
+ * invalid @trim, -ERANGE beyond +-AS9888_CALIBBIAS_MAX.
+ */
+static int as9888_offset_bias(const struct as9888_axis_trim *trim, s32 ot_q16,
+			      s32 *bias)
+{
+	s64 b;
+
+	if (!as9888_trim_valid(trim))
+		return -EINVAL;
+
+	/* -O / St_RT * 1024 with O in Q16: -O / (St_RT * 64) */
+	b = as9888_div_round_s64(-(s64)ot_q16, (s64)trim->st_rt *
+				 AS9888_Q16_ONE / AS9888_ACC_OUT_PER_G);
+	if (!as9888_in_range(b, -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX))
+		return -ERANGE;
+
+	*bias = (s32)b;
+
+	return 0;
+}
+
 /**
  * as9888_accel_cal_from_level() - the calibration a level test gives
  * @ee: the decoded EEPROM
@@ -131,7 +156,6 @@ int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
 				struct as9888_accel_cal *cal)
 {
 	s32 st_q16, ot_l_q16, ref_q16;
-	s64 bias;
 	int axis, ret;
 
 	if (!as9888_in_range(t_level_mdegc, as9888_tmps_to_mdegc(AS9888_TMPS_MAX),
@@ -157,14 +181,9 @@ int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
 					ee->t_rt_mdegc, &ref_q16);
 		if (ret)
 			return ret;
-		/* -O / St_RT * 1024 with O in Q16: -O / (St_RT * 64) */
-		bias = as9888_div_round_s64(-(s64)ref_q16,
-					    (s64)trim->st_rt * AS9888_Q16_ONE /
-					    AS9888_ACC_OUT_PER_G);
-		if (!as9888_in_range(bias, -AS9888_CALIBBIAS_MAX,
-				     AS9888_CALIBBIAS_MAX))
-			return -ERANGE;
-		cal->bias[axis] = (s32)bias;
+		ret = as9888_offset_bias(trim, ref_q16, &cal->bias[axis]);
+		if (ret)
+			return ret;
 	}
 
 	return 0;
@@ -185,24 +204,25 @@ int as9888_accel_cal_from_level(const struct as9888_eeprom *ee,
  */
 int as9888_dac_bias(const struct as9888_axis_trim *trim, u8 da, s32 *bias)
 {
-	s64 ot_q16, b;
+	s32 ot_q16, b;
 	u8 got;
+	int ret;
 
-	if (!as9888_dac_valid(da) || !as9888_dac_valid(trim->da) ||
-	    !as9888_in_range(trim->st_rt, 1, AS9888_ST_Q16_MAX / AS9888_Q16_ONE))
+	if (!as9888_trim_valid(trim))
 		return -EINVAL;
 
-	ot_q16 = (s64)(as9888_dac2lin(trim->ga, trim->da) -
-		       as9888_dac2lin(trim->ga, da)) *
-		 as9888_dac_step_q16(trim->ga);
-	b = as9888_div_round_s64(-ot_q16, (s64)trim->st_rt * AS9888_Q16_ONE /
-				 AS9888_ACC_OUT_PER_G);
-	if (!as9888_in_range(b, -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX) ||
-	    as9888_bias_dac(trim, (s32)b, &got) ||
+	/* A zero offset at @da, moved to the factory DAC value */
+	ret = as9888_offset_dac_shift_q16(trim, 0, da, trim->da, &ot_q16);
+	if (ret)
+		return ret;
+	ret = as9888_offset_bias(trim, ot_q16, &b);
+	if (ret)
+		return ret;
+	if (as9888_bias_dac(trim, b, &got) ||
 	    as9888_dac2lin(trim->ga, got) != as9888_dac2lin(trim->ga, da))
 		return -ERANGE;
 
-	*bias = (s32)b;
+	*bias = b;
 
 	return 0;
 }

@@ -760,6 +760,69 @@ static void kunit_cal_from_level(void **state)
 							  da, &cal), -EINVAL);
 }
 
+/*
+ * The calibbias that makes the driver run a DAC value: a zero offset at
+ * that value, moved to the factory DAC value, as a calibbias; one trim
+ * check, the shared unit's (as9888_trim_valid())
+ */
+static void dac_bias(void **state)
+{
+	struct as9888_eeprom ee;
+	struct as9888_axis_trim t;
+	int axis, lin, n = 0;
+	s32 bias;
+	u8 da, got;
+
+	assert_int_equal(as9888_eeprom_decode(example, &ee), 0);
+	t = ee.axis[0];
+
+	/* The factory DAC value is calibbias 0 */
+	assert_int_equal(as9888_dac_bias(&t, t.da, &bias), 0);
+	assert_int_equal(bias, 0);
+	/* One code up moves the output by -2048 / (gain + 16) = -46.545 LSB
+	 * (gain 28): a calibbias of 46.545 * 1024 / 260 = 183.3 */
+	da = as9888_lin2dac(t.ga, as9888_dac2lin(t.ga, t.da) + 1);
+	assert_int_equal(as9888_dac_bias(&t, da, &bias), 0);
+	assert_int_equal(bias, 183);
+
+	/* Every DAC value in reach comes back from its calibbias */
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		t = ee.axis[axis];
+		for (lin = -AS9888_DAC_LIN_MAX; lin <= AS9888_DAC_LIN_MAX; lin++) {
+			da = as9888_lin2dac(t.ga, lin);
+			if (as9888_dac_bias(&t, da, &bias))
+				continue;
+			n++;
+			assert_int_equal(as9888_bias_dac(&t, bias, &got), 0);
+			assert_int_equal(as9888_dac2lin(t.ga, got), lin);
+		}
+	}
+	assert_true(n > 3 * 40);
+
+	/* An invalid DAC value, or a trim the decoder would not give */
+	assert_int_equal(as9888_dac_bias(&ee.axis[0], 0x50, &bias), -EINVAL);
+	t = ee.axis[0];
+	t.st_rt = 100;
+	assert_int_equal(as9888_dac_bias(&t, t.da, &bias), -EINVAL);
+	t = ee.axis[0];
+	t.kote_den = 0;
+	assert_int_equal(as9888_dac_bias(&t, t.da, &bias), -EINVAL);
+	t = ee.axis[0];
+	t.kste_idx = 8;
+	assert_int_equal(as9888_dac_bias(&t, t.da, &bias), -EINVAL);
+}
+
+/* The self-test's adjusted readings in thousandths, rounded to nearest */
+static void q8_to_milli(void **state)
+{
+	assert_int_equal(as9888_q8_to_milli(AS9888_Q8_ONE), 1000);
+	assert_int_equal(as9888_q8_to_milli(1), 4);
+	assert_int_equal(as9888_q8_to_milli(-1), -4);
+	assert_int_equal(as9888_q8_to_milli(16), 62);	/* 62.5: to even */
+	assert_int_equal(as9888_q8_to_milli(48), 188);	/* 187.5: to even */
+	assert_int_equal(as9888_q8_to_milli(4095 * 383), 6126504);
+}
+
 static void kunit_mean(void **state)
 {
 	s32 m;
@@ -923,6 +986,8 @@ int main(void)
 		cmocka_unit_test(kunit_accel),
 		cmocka_unit_test(kunit_uncompensate),
 		cmocka_unit_test(kunit_cal_from_level),
+		cmocka_unit_test(dac_bias),
+		cmocka_unit_test(q8_to_milli),
 		cmocka_unit_test(kunit_mean),
 		cmocka_unit_test(kunit_accel_judgments),
 		cmocka_unit_test(kunit_samples),

@@ -84,6 +84,21 @@ s64 as9888_div_round_s64(s64 num, s64 den)
 }
 EXPORT_SYMBOL_IF_KUNIT(as9888_div_round_s64);
 
+/**
+ * as9888_q8_to_milli() - a Q8 value in thousandths, rounded to nearest
+ * @q8: the value in 1/256 (for example as9888_mag_adjust_q8())
+ *
+ * Ties go to even (as9888_div_round_s64()). Exact for every s32 @q8:
+ * |@q8 * 1000| < 2^42.
+ *
+ * Return: round(@q8 * 1000 / 256).
+ */
+s64 as9888_q8_to_milli(s32 q8)
+{
+	return as9888_div_round_s64((s64)q8 * AS9888_MILLI, AS9888_Q8_ONE);
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_q8_to_milli);
+
 static bool as9888_t_valid(s32 t_mdegc)
 {
 	return as9888_in_range(t_mdegc, AS9888_CALIB_T_MIN_MDEGC,
@@ -165,7 +180,7 @@ bool as9888_selftest_ok(int axis, s16 h, u8 ehc)
 }
 EXPORT_SYMBOL_IF_KUNIT(as9888_selftest_ok);
 
-static bool as9888_trim_valid(const struct as9888_axis_trim *trim)
+VISIBLE_IF_KUNIT bool as9888_trim_valid(const struct as9888_axis_trim *trim)
 {
 	return as9888_in_range(trim->st_rt, AS9888_ST_RT_MIN, AS9888_ST_RT_MAX) &&
 	       trim->kste_idx <= AS9888_KSTE_IDX_MAX &&
@@ -173,6 +188,7 @@ static bool as9888_trim_valid(const struct as9888_axis_trim *trim)
 			       AS9888_KOTE_NUM_MAX) &&
 	       as9888_in_range(trim->kote_den, 1, AS9888_KOTE_DEN_MAX);
 }
+EXPORT_SYMBOL_IF_KUNIT(as9888_trim_valid);
 
 /**
  * as9888_sensitivity_q16() - St(t) = St_RT * (1 + Kste / 100 * (t - t_RT))

@@ -31,6 +31,8 @@
 #include <linux/bits.h>
 #include <linux/types.h>
 
+#include "as9888_regs.h"
+
 #define AS9888_AXES			3
 
 /* EEPROM window 0x40..0x54, read in one burst in EEPROM access mode */
@@ -47,24 +49,12 @@
 #define AS9888_EE_ET1			19
 #define AS9888_EE_ET2			20
 
-/* EEPROM bit fields */
-#define AS9888_EREF3_TRT_MSK		GENMASK(7, 3)
-#define AS9888_EREF3_TRIM_MSK		GENMASK(2, 0)
-#define AS9888_REF3_FIXED		0x18
-#define AS9888_EAGA_DT_SIGN_MSK		BIT(7)
-#define AS9888_EAGA_REG_MSK		GENMASK(6, 0)
-#define AS9888_GA_POLARITY_MSK		BIT(6)
-#define AS9888_GA_GAIN_MSK		GENMASK(5, 0)
-#define AS9888_EAGTD_KSTE_MSK		GENMASK(7, 5)
-#define AS9888_EAGTD_DETAIL_MSK		GENMASK(4, 0)
-
-/* Valid ranges of the EEPROM fields and registers */
+/*
+ * The bit fields of the EEPROM bytes and of the trim registers are in
+ * as9888_regs.h. Valid ranges of the EEPROM fields:
+ */
 #define AS9888_GAIN_MIN			7
 #define AS9888_GAIN_MAX			43
-#define AS9888_DAC_NEG_MAX		67	/* 0..67: linear code 0..-67 */
-#define AS9888_DAC_ZERO			0x80	/* reset value: linear code 0 */
-#define AS9888_DAC_LIN_MAX		AS9888_DAC_NEG_MAX	/* either side of 0 */
-#define AS9888_DAC_POS_MAX		(AS9888_DAC_ZERO + AS9888_DAC_LIN_MAX)
 #define AS9888_TMPS_MIN			0x28	/* 85 degC */
 #define AS9888_TMPS_MAX			0xe0	/* -30 degC */
 #define AS9888_TMPS_ZERO_DEGC		176
@@ -86,6 +76,7 @@
 
 /* Adjusted magnetometer readings are in 1/256 LSB (Q8) */
 #define AS9888_Q8_ONE			256
+#define AS9888_MILLI			1000
 
 /* Application note, step 2: self-test windows after sensitivity adjustment */
 #define AS9888_SELFTEST_XY_MIN		(-100)
@@ -231,6 +222,7 @@ int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt);
 
 /* Rounding helper shared with the users of this unit */
 s64 as9888_div_round_s64(s64 num, s64 den);
+s64 as9888_q8_to_milli(s32 q8);
 
 static inline bool as9888_in_range(s64 value, s64 lo, s64 hi)
 {
@@ -239,6 +231,7 @@ static inline bool as9888_in_range(s64 value, s64 lo, s64 hi)
 
 #if IS_ENABLED(CONFIG_KUNIT)
 /* Internal to as9888_calib.c, visible to its KUnit test */
+bool as9888_trim_valid(const struct as9888_axis_trim *trim);
 bool as9888_tmps_valid(u8 tmps);
 bool as9888_selftest_window_ok(int axis, s32 adj_q8);
 int as9888_sensitivity_q16(const struct as9888_axis_trim *trim,

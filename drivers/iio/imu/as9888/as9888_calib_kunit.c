@@ -391,6 +391,49 @@ static void as9888_test_selftest_window(struct kunit *test)
 	KUNIT_EXPECT_FALSE(test, as9888_selftest_window_ok(-1, 0));
 }
 
+/* Adjusted readings in thousandths (the self-test's debugfs file) */
+static void as9888_test_q8_to_milli(struct kunit *test)
+{
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(0), 0);
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(AS9888_Q8_ONE), 1000);
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(-AS9888_Q8_ONE), -1000);
+	/* 1/256 = 0.00390625 */
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(1), 4);
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(-1), -4);
+	/* 16/256 = 0.0625 and 48/256 = 0.1875: ties to even */
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(16), 62);
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(48), 188);
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(-16), -62);
+	/* The largest adjusted reading, 4095 * (255 + 128), and beyond */
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(4095 * 383), 6126504);
+	KUNIT_EXPECT_EQ(test, as9888_q8_to_milli(S32_MIN), -8388608000LL);
+}
+
+/* The trim the decoder accepts, and nothing beyond it */
+static void as9888_test_trim_valid(struct kunit *test)
+{
+	struct as9888_eeprom ee;
+	struct as9888_axis_trim t;
+
+	as9888_decode_example(test, &ee);
+	t = ee.axis[0];
+	KUNIT_EXPECT_TRUE(test, as9888_trim_valid(&t));
+	t.st_rt = 256 - 16;
+	KUNIT_EXPECT_TRUE(test, as9888_trim_valid(&t));
+	t.st_rt = 256 + 15;
+	KUNIT_EXPECT_TRUE(test, as9888_trim_valid(&t));
+	t.st_rt = 256 - 17;
+	KUNIT_EXPECT_FALSE(test, as9888_trim_valid(&t));
+	t.st_rt = 256 + 16;
+	KUNIT_EXPECT_FALSE(test, as9888_trim_valid(&t));
+	t = ee.axis[0];
+	t.kste_idx = 8;
+	KUNIT_EXPECT_FALSE(test, as9888_trim_valid(&t));
+	t = ee.axis[0];
+	t.kote_den = 0;
+	KUNIT_EXPECT_FALSE(test, as9888_trim_valid(&t));
+}
+
 /* 6.3, 6.4: St(t) = St_RT * (1 + Kste / 100 * (t - t_RT)) */
 struct as9888_st_case {
 	const char *name;
@@ -864,6 +907,8 @@ static struct kunit_case as9888_calib_test_cases[] = {
 	KUNIT_CASE_PARAM(as9888_test_mag, as9888_mag_gen_params),
 	KUNIT_CASE_PARAM(as9888_test_selftest, as9888_selftest_gen_params),
 	KUNIT_CASE(as9888_test_selftest_window),
+	KUNIT_CASE(as9888_test_q8_to_milli),
+	KUNIT_CASE(as9888_test_trim_valid),
 	KUNIT_CASE_PARAM(as9888_test_sensitivity, as9888_st_gen_params),
 	KUNIT_CASE(as9888_test_sensitivity_bad_trim),
 	KUNIT_CASE_PARAM(as9888_test_offset, as9888_offset_gen_params),

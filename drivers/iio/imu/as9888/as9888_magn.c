@@ -40,8 +40,6 @@
 #define AS9888_MAGN_SCALE_DEN		256000
 #define AS9888_EHC_OFFSET		128
 
-#define AS9888_MILLI			1000
-
 /**
  * struct as9888_selftest - result of the last magnetometer self-test
  * @done:	a self-test has run
@@ -340,8 +338,7 @@ static int as9888_selftest_readings_show(struct seq_file *m, void *unused)
 	}
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		s64 milli = as9888_div_round_s64((s64)res->adj_q8[axis] *
-						 AS9888_MILLI, AS9888_Q8_ONE);
+		s64 milli = as9888_q8_to_milli(res->adj_q8[axis]);
 		u64 abs_milli = milli < 0 ? -milli : milli;
 		u32 frac;
 		u64 whole = div_u64_rem(abs_milli, AS9888_MILLI, &frac);

@@ -56,10 +56,30 @@
 #define AS9888_REG_ADA(axis)		(AS9888_REG_AXDA + (axis))
 #define AS9888_REG_AZDA			0x39
 #define AS9888_TRIM_LEN			(AS9888_REG_AZDA - AS9888_REG_REF1 + 1)
+/* REF3: bits 7..3 fixed, the trim field below from EREF3 */
+#define AS9888_REF3_FIXED		0x18
+/* AxGA: the DAC polarity and the gain */
+#define AS9888_GA_POLARITY_MSK		BIT(6)
+#define AS9888_GA_GAIN_MSK		GENMASK(5, 0)
+/*
+ * AxDA, the offset DAC: 0..67 is the linear code 0..-67, 0x80..0xc3 the
+ * linear code 0..67 (before the polarity of AxGA)
+ */
+#define AS9888_DAC_NEG_MAX		67
+#define AS9888_DAC_ZERO			0x80	/* reset value: linear code 0 */
+#define AS9888_DAC_LIN_MAX		AS9888_DAC_NEG_MAX	/* either side of 0 */
+#define AS9888_DAC_POS_MAX		(AS9888_DAC_ZERO + AS9888_DAC_LIN_MAX)
 
 /* EEPROM window, readable in EEPROM access mode after t_EEP */
 #define AS9888_REG_EEPROM		0x40
 #define AS9888_REG_EEPROM_END		0x54
+/* Bit fields of the EEPROM bytes */
+#define AS9888_EREF3_TRT_MSK		GENMASK(7, 3)
+#define AS9888_EREF3_TRIM_MSK		GENMASK(2, 0)
+#define AS9888_EAGA_DT_SIGN_MSK		BIT(7)
+#define AS9888_EAGA_REG_MSK		GENMASK(6, 0)
+#define AS9888_EAGTD_KSTE_MSK		GENMASK(7, 5)
+#define AS9888_EAGTD_DETAIL_MSK		GENMASK(4, 0)
 
 /* Timing, microseconds */
 #define AS9888_T_RSTL_US		5
