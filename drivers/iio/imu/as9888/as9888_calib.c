@@ -697,3 +697,104 @@ const char *as9888_ee_warning_str(u32 warning_bit)
 		return "unknown EEPROM warning";
 	}
 }
+
+/* Magnetometer scale: 3 * (EHC + 128) / 256000 gauss per LSB */
+s32 as9888_mag_scale_num(u8 ehc)
+{
+	return AS9888_MAGN_SCALE_NUM * ((s32)ehc + AS9888_EHC_OFFSET);
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_mag_scale_num);
+
+/* The calibration after probe: bias 0, scale 1.000000 on every axis */
+void as9888_magn_cal_init(struct as9888_magn_cal *cal)
+{
+	int axis;
+
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		cal->bias[axis] = 0;
+		cal->scale_micro[axis] = AS9888_MAGN_CALIBSCALE_ONE;
+	}
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_magn_cal_init);
+
+/* in_magn_<axis>_calibbias: -4096..4096 chip LSB */
+bool as9888_magn_calibbias_valid(s64 bias)
+{
+	return as9888_in_range(bias, -AS9888_MAGN_CALIBBIAS_MAX,
+			       AS9888_MAGN_CALIBBIAS_MAX);
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_magn_calibbias_valid);
+
+/**
+ * as9888_magn_calibscale_micro() - a calibscale as written, in millionths
+ * @val: integer part, as IIO_VAL_INT_PLUS_MICRO hands it
+ * @val2: micro part, 0..999999, or negative for -0.xxxxxx
+ * @micro: the value in millionths
+ *
+ * Return: 0, or -EINVAL when the value is outside 0.5..2 (checked before
+ * anything is multiplied, so any @val is safe).
+ */
+int as9888_magn_calibscale_micro(int val, int val2, s32 *micro)
+{
+	s32 v;
+
+	if (val < 0 || val2 < 0 || val2 >= AS9888_MAGN_CALIBSCALE_ONE ||
+	    val > AS9888_MAGN_CALIBSCALE_MAX / AS9888_MAGN_CALIBSCALE_ONE)
+		return -EINVAL;
+
+	v = val * AS9888_MAGN_CALIBSCALE_ONE + val2;
+	if (!as9888_in_range(v, AS9888_MAGN_CALIBSCALE_MIN,
+			     AS9888_MAGN_CALIBSCALE_MAX))
+		return -EINVAL;
+
+	*micro = v;
+
+	return 0;
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_magn_calibscale_micro);
+
+/**
+ * as9888_magn_calibrate() - one magnetometer axis, calibrated
+ * @h: the chip's count
+ * @bias: calibbias, chip LSB, |@bias| <= AS9888_MAGN_CALIBBIAS_MAX
+ * @scale_micro: calibscale in millionths, AS9888_MAGN_CALIBSCALE_MIN..MAX
+ * @out: rint((@h + @bias) * @scale_micro / 10^6), or on -ERANGE the rail of
+ *	 the same sign (AS9888_MAG_MIN or AS9888_MAG_MAX)
+ *
+ * A count at the chip's rail (overflow) is not calibrated: it says nothing
+ * about the field.
+ *
+ * Return: 0; -ERANGE when @h is at a rail or the result is outside
+ * AS9888_MAGN_OUT_MIN..AS9888_MAGN_OUT_MAX; -EINVAL when @bias or
+ * @scale_micro is out of range (@out untouched).
+ */
+int as9888_magn_calibrate(s16 h, s32 bias, s32 scale_micro, s16 *out)
+{
+	s64 v;
+
+	if (!as9888_magn_calibbias_valid(bias) ||
+	    !as9888_in_range(scale_micro, AS9888_MAGN_CALIBSCALE_MIN,
+			     AS9888_MAGN_CALIBSCALE_MAX))
+		return -EINVAL;
+
+	if (as9888_mag_overflow(h)) {
+		*out = h < 0 ? AS9888_MAG_MIN : AS9888_MAG_MAX;
+		return -ERANGE;
+	}
+
+	v = as9888_div_round_s64(((s64)h + bias) * scale_micro,
+				 AS9888_MAGN_CALIBSCALE_ONE);
+	if (v < AS9888_MAGN_OUT_MIN) {
+		*out = AS9888_MAG_MIN;
+		return -ERANGE;
+	}
+	if (v > AS9888_MAGN_OUT_MAX) {
+		*out = AS9888_MAG_MAX;
+		return -ERANGE;
+	}
+
+	*out = v;
+
+	return 0;
+}
+EXPORT_SYMBOL_IF_KUNIT(as9888_magn_calibrate);

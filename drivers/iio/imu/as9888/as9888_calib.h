@@ -245,4 +245,49 @@ bool as9888_dac_valid(u8 da);
 s32 as9888_dac_step_q16(u8 ga);
 #endif
 
+/*
+ * Magnetometer scale and calibration.
+ *
+ * in_magn_<axis>_scale is 0.3 uT/LSB times the EEPROM's sensitivity
+ * adjustment (EHC + 128) / 256, in gauss (1 G = 100 uT):
+ * as9888_mag_scale_num(ehc) / AS9888_MAGN_SCALE_DEN.
+ *
+ * The calibration (in_magn_<axis>_calibbias, _calibscale) lives in the
+ * driver, not in the chip: a reading is
+ *
+ *   out = rint((H + calibbias) * calibscale)
+ *
+ * with H the chip's count, calibbias an integer in chip LSB
+ * (|calibbias| <= AS9888_MAGN_CALIBBIAS_MAX) and calibscale in millionths
+ * (AS9888_MAGN_CALIBSCALE_MIN..MAX), ties to even. The product is at most
+ * 8192 * 2000000 in magnitude, well inside s64. The output keeps the chip's
+ * range: AS9888_MAGN_OUT_MIN..MAX, the rails excluded, so that -4096 and
+ * 4095 still mean "out of range" wherever they appear.
+ */
+#define AS9888_MAGN_SCALE_NUM		3
+#define AS9888_MAGN_SCALE_DEN		256000
+#define AS9888_MAGN_CALIBBIAS_MAX	4096
+#define AS9888_MAGN_CALIBSCALE_ONE	1000000		/* 1.000000 */
+#define AS9888_MAGN_CALIBSCALE_MIN	(AS9888_MAGN_CALIBSCALE_ONE / 2)
+#define AS9888_MAGN_CALIBSCALE_MAX	(AS9888_MAGN_CALIBSCALE_ONE * 2)
+#define AS9888_MAGN_OUT_MIN		(AS9888_MAG_MIN + 1)
+#define AS9888_MAGN_OUT_MAX		(AS9888_MAG_MAX - 1)
+
+/**
+ * struct as9888_magn_cal - the magnetometer calibration, per axis
+ * @bias:	in_magn_<axis>_calibbias, chip LSB, added to the count
+ * @scale_micro: in_magn_<axis>_calibscale in millionths, multiplies after
+ *		the bias
+ */
+struct as9888_magn_cal {
+	s32 bias[AS9888_AXES];
+	s32 scale_micro[AS9888_AXES];
+};
+
+s32 as9888_mag_scale_num(u8 ehc);
+void as9888_magn_cal_init(struct as9888_magn_cal *cal);
+bool as9888_magn_calibbias_valid(s64 bias);
+int as9888_magn_calibscale_micro(int val, int val2, s32 *micro);
+int as9888_magn_calibrate(s16 h, s32 bias, s32 scale_micro, s16 *out);
+
 #endif /* AS9888_CALIB_H */

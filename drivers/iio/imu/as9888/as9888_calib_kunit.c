@@ -894,6 +894,170 @@ static void as9888_test_round(struct kunit *test)
 	KUNIT_EXPECT_EQ(test, as9888_div_round_s64(c->num, c->den), c->q);
 }
 
+/* Magnetometer scale: 3 * (EHC + 128) / 256000 G per LSB */
+static void as9888_test_mag_scale(struct kunit *test)
+{
+	KUNIT_EXPECT_EQ(test, AS9888_MAGN_SCALE_DEN, 256000);
+	/* EHC 128: 768 / 256000 = 0.003 G = 0.3 uT */
+	KUNIT_EXPECT_EQ(test, as9888_mag_scale_num(128), 768);
+	KUNIT_EXPECT_EQ(test, as9888_mag_scale_num(0), 384);
+	KUNIT_EXPECT_EQ(test, as9888_mag_scale_num(255), 1149);
+	/* The same factor as the sensitivity adjustment */
+	KUNIT_EXPECT_EQ(test, as9888_mag_scale_num(0x85) * AS9888_Q8_ONE,
+			AS9888_MAGN_SCALE_NUM * as9888_mag_adjust_q8(256, 0x85));
+}
+
+/* Magnetometer calibration: rint((H + calibbias) * calibscale) */
+struct as9888_magn_cal_case {
+	const char *name;
+	s16 h;
+	s32 bias;
+	s32 scale_micro;
+	int ret;
+	s16 out;
+};
+
+#define AS9888_MAGN_UNTOUCHED	0x5a5a
+
+static const struct as9888_magn_cal_case as9888_magn_cal_cases[] = {
+	{ "defaults: the count", 67, 0, 1000000, 0, 67 },
+	{ "defaults: negative count", -136, 0, 1000000, 0, -136 },
+	{ "bias adds", 67, -100, 1000000, 0, -33 },
+	{ "scale after bias", 100, 20, 1500000, 0, 180 },
+	{ "scale below 1", -250, 50, 750000, 0, -150 },
+	{ "1.5 to 2 (even)", 3, 0, 500000, 0, 2 },
+	{ "2.5 to 2 (even)", 5, 0, 500000, 0, 2 },
+	{ "-2.5 to -2 (even)", -5, 0, 500000, 0, -2 },
+	{ "-3.5 to -4 (even)", -7, 0, 500000, 0, -4 },
+	{ "1023.5 to 1024", 2047, 0, 500000, 0, 1024 },
+	{ "1.999999 to 2", 1, 0, 1999999, 0, 2 },
+	{ "7.000007 to 7", 7, 0, 1000001, 0, 7 },
+	{ "bias cancels a large offset", 4000, -4096, 2000000, 0, -192 },
+	{ "sum 0", 1234, -1234, 1999999, 0, 0 },
+	{ "top of the output range", 4094, 0, 1000000, 0, 4094 },
+	{ "bottom of the output range", -4095, 0, 1000000, 0, -4095 },
+	{ "beyond the top", 4094, 1, 1000000, -ERANGE, 4095 },
+	{ "beyond the bottom", -4095, -1, 1000000, -ERANGE, -4096 },
+	{ "scaled beyond the top", 2048, 0, 2000000, -ERANGE, 4095 },
+	{ "largest product", 4094, 4096, 2000000, -ERANGE, 4095 },
+	{ "smallest product", -4095, -4096, 2000000, -ERANGE, -4096 },
+	{ "count at the top rail", 4095, -4096, 500000, -ERANGE, 4095 },
+	{ "count at the bottom rail", -4096, 4096, 500000, -ERANGE, -4096 },
+	{ "bias too large", 10, 4097, 1000000, -EINVAL, AS9888_MAGN_UNTOUCHED },
+	{ "bias too small", 10, -4097, 1000000, -EINVAL,
+	  AS9888_MAGN_UNTOUCHED },
+	{ "scale too small", 10, 0, 499999, -EINVAL, AS9888_MAGN_UNTOUCHED },
+	{ "scale too large", 10, 0, 2000001, -EINVAL, AS9888_MAGN_UNTOUCHED },
+	{ "scale 0", 10, 0, 0, -EINVAL, AS9888_MAGN_UNTOUCHED },
+};
+
+static void as9888_magn_cal_desc(const struct as9888_magn_cal_case *c,
+				 char *desc)
+{
+	strscpy(desc, c->name, KUNIT_PARAM_DESC_SIZE);
+}
+
+KUNIT_ARRAY_PARAM(as9888_magn_cal, as9888_magn_cal_cases,
+		  as9888_magn_cal_desc);
+
+static void as9888_test_magn_calibrate(struct kunit *test)
+{
+	const struct as9888_magn_cal_case *c = test->param_value;
+	s16 out = AS9888_MAGN_UNTOUCHED;
+
+	KUNIT_EXPECT_EQ(test, as9888_magn_calibrate(c->h, c->bias,
+						    c->scale_micro, &out),
+			c->ret);
+	KUNIT_EXPECT_EQ(test, out, c->out);
+}
+
+/* Every count with the defaults is the count, or -ERANGE at the rails */
+static void as9888_test_magn_calibrate_identity(struct kunit *test)
+{
+	struct as9888_magn_cal cal;
+	int h, ret;
+	s16 out;
+
+	memset(&cal, 0xa5, sizeof(cal));
+	as9888_magn_cal_init(&cal);
+	for (h = AS9888_MAG_MIN; h <= AS9888_MAG_MAX; h++) {
+		ret = as9888_magn_calibrate(h, cal.bias[1], cal.scale_micro[1],
+					    &out);
+		KUNIT_EXPECT_EQ(test, out, h);
+		KUNIT_EXPECT_EQ(test, ret, as9888_mag_overflow(h) ? -ERANGE : 0);
+	}
+}
+
+static void as9888_test_magn_cal_init(struct kunit *test)
+{
+	struct as9888_magn_cal cal;
+	int axis;
+
+	memset(&cal, 0xff, sizeof(cal));
+	as9888_magn_cal_init(&cal);
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		KUNIT_EXPECT_EQ(test, cal.bias[axis], 0);
+		KUNIT_EXPECT_EQ(test, cal.scale_micro[axis], 1000000);
+	}
+}
+
+/* calibscale as IIO_VAL_INT_PLUS_MICRO hands it, and calibbias */
+struct as9888_calibscale_case {
+	const char *name;
+	int val, val2;
+	int ret;
+	s32 micro;
+};
+
+static const struct as9888_calibscale_case as9888_calibscale_cases[] = {
+	{ "1", 1, 0, 0, 1000000 },
+	{ "0.5 (lowest)", 0, 500000, 0, 500000 },
+	{ "2 (highest)", 2, 0, 0, 2000000 },
+	{ "1.999999", 1, 999999, 0, 1999999 },
+	{ "1.000001", 1, 1, 0, 1000001 },
+	{ "0.499999", 0, 499999, -EINVAL, -1 },
+	{ "2.000001", 2, 1, -EINVAL, -1 },
+	{ "0", 0, 0, -EINVAL, -1 },
+	{ "-0.5", 0, -500000, -EINVAL, -1 },
+	{ "-1.5", -1, 500000, -EINVAL, -1 },
+	{ "3", 3, 0, -EINVAL, -1 },
+	{ "INT_MAX", INT_MAX, 0, -EINVAL, -1 },
+	{ "INT_MIN", INT_MIN, 0, -EINVAL, -1 },
+	{ "micro part 10^6", 0, 1000000, -EINVAL, -1 },
+	{ "micro part INT_MAX", 1, INT_MAX, -EINVAL, -1 },
+};
+
+static void as9888_calibscale_desc(const struct as9888_calibscale_case *c,
+				   char *desc)
+{
+	strscpy(desc, c->name, KUNIT_PARAM_DESC_SIZE);
+}
+
+KUNIT_ARRAY_PARAM(as9888_calibscale, as9888_calibscale_cases,
+		  as9888_calibscale_desc);
+
+static void as9888_test_magn_calibscale(struct kunit *test)
+{
+	const struct as9888_calibscale_case *c = test->param_value;
+	s32 micro = -1;
+
+	KUNIT_EXPECT_EQ(test, as9888_magn_calibscale_micro(c->val, c->val2,
+							   &micro),
+			c->ret);
+	KUNIT_EXPECT_EQ(test, micro, c->micro);
+}
+
+static void as9888_test_magn_calibbias(struct kunit *test)
+{
+	KUNIT_EXPECT_TRUE(test, as9888_magn_calibbias_valid(0));
+	KUNIT_EXPECT_TRUE(test, as9888_magn_calibbias_valid(4096));
+	KUNIT_EXPECT_TRUE(test, as9888_magn_calibbias_valid(-4096));
+	KUNIT_EXPECT_FALSE(test, as9888_magn_calibbias_valid(4097));
+	KUNIT_EXPECT_FALSE(test, as9888_magn_calibbias_valid(-4097));
+	KUNIT_EXPECT_FALSE(test, as9888_magn_calibbias_valid(S64_MAX));
+	KUNIT_EXPECT_FALSE(test, as9888_magn_calibbias_valid(S64_MIN));
+}
+
 static struct kunit_case as9888_calib_test_cases[] = {
 	KUNIT_CASE(as9888_test_decode_example),
 	KUNIT_CASE(as9888_test_decode_z_addresses),
@@ -922,6 +1086,13 @@ static struct kunit_case as9888_calib_test_cases[] = {
 	KUNIT_CASE(as9888_test_dac_round_trip),
 	KUNIT_CASE(as9888_test_dac_step),
 	KUNIT_CASE_PARAM(as9888_test_round, as9888_round_gen_params),
+	KUNIT_CASE(as9888_test_mag_scale),
+	KUNIT_CASE_PARAM(as9888_test_magn_calibrate, as9888_magn_cal_gen_params),
+	KUNIT_CASE(as9888_test_magn_calibrate_identity),
+	KUNIT_CASE(as9888_test_magn_cal_init),
+	KUNIT_CASE_PARAM(as9888_test_magn_calibscale,
+			 as9888_calibscale_gen_params),
+	KUNIT_CASE(as9888_test_magn_calibbias),
 	{ }
 };
 

@@ -292,6 +292,7 @@ extern const struct as9888_sensor_desc as9888_accel_desc;
 
 /* The magnetometer device, as9888_magn.c */
 extern const struct as9888_sensor_desc as9888_magn_desc;
+void as9888_magn_init(struct iio_dev *indio_dev);
 void as9888_magn_debugfs_init(struct iio_dev *indio_dev);
 
 /* The data-ready trigger and the buffers, as9888_trigger.c */

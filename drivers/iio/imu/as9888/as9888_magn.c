@@ -6,6 +6,12 @@
  * application note). Only this device makes the chip measure the
  * magnetometer (SLCT2.MEN, t_MAG instead of t_ACC per sample): a client of
  * the accelerometer never pays for it.
+ *
+ * Every reading, read or buffered, carries the calibration userspace
+ * writes (calibbias, calibscale: the hard iron and the diagonal of the
+ * soft-iron correction), applied here with as9888_magn_calibrate(). It is
+ * driver state, not the chip's, so it survives runtime suspend and system
+ * sleep; the self-test judges the chip's own readings, without it.
  */
 
 #include <linux/array_size.h>
@@ -31,15 +37,6 @@
 
 #include "as9888_core.h"
 
-/*
- * 0.3 uT/LSB before adjustment, 1 G = 100 uT, and the adjustment
- * multiplies by (EHC + 128) / 256, so the scale in gauss is
- * 3 * (EHC + 128) / 256000.
- */
-#define AS9888_MAGN_SCALE_NUM		3
-#define AS9888_MAGN_SCALE_DEN		256000
-#define AS9888_EHC_OFFSET		128
-
 /**
  * struct as9888_selftest - result of the last magnetometer self-test
  * @done:	a self-test has run
@@ -64,6 +61,9 @@ enum as9888_magn_scan {
  * struct as9888_magn - IIO private data of the magnetometer device
  * @sensor:	the chip, and which sensor this is
  * @selftest:	result of the last self-test, under the chip's lock
+ * @cal:	the calibration applied to every reading, under the chip's
+ *		lock (the buffer's push runs with it held, so a sample never
+ *		sees half of a change); bias 0 and scale 1 after probe
  * @scan:	buffer for one scan: up to three 16-bit channels, timestamp;
  *		used by the trigger handler only
  * @scan.chans: the channel values
@@ -72,17 +72,42 @@ enum as9888_magn_scan {
 struct as9888_magn {
 	struct as9888_sensor sensor;
 	struct as9888_selftest selftest;
+	struct as9888_magn_cal cal;
 	struct {
 		s16 chans[AS9888_SCAN_MAGN_TIMESTAMP];
 		aligned_s64 timestamp;
 	} scan;
 };
 
-static int as9888_magn_read_channel(struct as9888_chip *chip,
+/**
+ * as9888_magn_out() - one axis of a sample, calibrated
+ * @magn: the device's private data, with the chip's lock held
+ * @s: a sample with magnetometer data
+ * @axis: 0..2 for X..Z
+ * @out: the calibrated reading, or the rail of its sign (-4096 or 4095)
+ *
+ * Return: 0, or -ERANGE when the chip's count is at its rail or the
+ * calibrated value is beyond the output range (see as9888_magn_calibrate()).
+ */
+static int as9888_magn_out(struct as9888_magn *magn,
+			   const struct as9888_raw_sample *s, int axis,
+			   s16 *out)
+{
+	lockdep_assert_held(&magn->sensor.chip->lock);
+
+	return as9888_magn_calibrate((s16)le16_to_cpu(s->magn[axis]),
+				     magn->cal.bias[axis],
+				     magn->cal.scale_micro[axis], out);
+}
+
+static int as9888_magn_read_channel(struct iio_dev *indio_dev,
 				    const struct iio_chan_spec *chan,
 				    int *val)
 {
+	struct as9888_magn *magn = iio_priv(indio_dev);
+	struct as9888_chip *chip = magn->sensor.chip;
 	struct as9888_raw_sample s;
+	s16 h;
 	s64 ts;
 	int ret;
 
@@ -90,21 +115,73 @@ static int as9888_magn_read_channel(struct as9888_chip *chip,
 	if (ret)
 		return ret;
 
-	scoped_guard(mutex, &chip->lock)
+	scoped_guard(mutex, &chip->lock) {
 		ret = as9888_measure(chip, AS9888_MAGN, AS9888_MS_SINGLE, true,
 				     &s, &ts);
+		/* HOFL: -ERANGE for every axis, as the chip does not say which */
+		if (!ret)
+			ret = as9888_check_magn(&s);
+		if (!ret)
+			ret = as9888_magn_out(magn, &s, chan->address, &h);
+	}
 
 	pm_runtime_put_autosuspend(chip->dev);
 	if (ret)
 		return ret;
 
-	ret = as9888_check_magn(&s);
+	*val = h;
+
+	return IIO_VAL_INT;
+}
+
+/* Calibration: driver state only, so also while the buffer runs */
+
+static int as9888_magn_read_cal(struct as9888_magn *magn,
+				const struct iio_chan_spec *chan, int *val,
+				int *val2, long mask)
+{
+	guard(mutex)(&magn->sensor.chip->lock);
+
+	if (mask == IIO_CHAN_INFO_CALIBBIAS) {
+		*val = magn->cal.bias[chan->address];
+		return IIO_VAL_INT;
+	}
+
+	*val = magn->cal.scale_micro[chan->address] /
+	       AS9888_MAGN_CALIBSCALE_ONE;
+	*val2 = magn->cal.scale_micro[chan->address] %
+		AS9888_MAGN_CALIBSCALE_ONE;
+
+	return IIO_VAL_INT_PLUS_MICRO;
+}
+
+/*
+ * A new value takes effect with the next sample read or pushed: samples
+ * before it carry the old calibration, samples after it the new one.
+ */
+static int as9888_magn_write_cal(struct as9888_magn *magn,
+				 const struct iio_chan_spec *chan, int val,
+				 int val2, long mask)
+{
+	s32 micro;
+	int ret;
+
+	if (mask == IIO_CHAN_INFO_CALIBBIAS) {
+		if (val2 || !as9888_magn_calibbias_valid(val))
+			return -EINVAL;
+		guard(mutex)(&magn->sensor.chip->lock);
+		magn->cal.bias[chan->address] = val;
+		return 0;
+	}
+
+	ret = as9888_magn_calibscale_micro(val, val2, &micro);
 	if (ret)
 		return ret;
 
-	*val = (s16)le16_to_cpu(s.magn[chan->address]);
+	guard(mutex)(&magn->sensor.chip->lock);
+	magn->cal.scale_micro[chan->address] = micro;
 
-	return IIO_VAL_INT;
+	return 0;
 }
 
 static int as9888_magn_read_raw(struct iio_dev *indio_dev,
@@ -118,14 +195,17 @@ static int as9888_magn_read_raw(struct iio_dev *indio_dev,
 	case IIO_CHAN_INFO_RAW:
 		if (!iio_device_claim_direct(indio_dev))
 			return -EBUSY;
-		ret = as9888_magn_read_channel(chip, chan, val);
+		ret = as9888_magn_read_channel(indio_dev, chan, val);
 		iio_device_release_direct(indio_dev);
 		return ret;
 	case IIO_CHAN_INFO_SCALE:
-		*val = AS9888_MAGN_SCALE_NUM *
-		       (chip->ee.axis[chan->address].ehc + AS9888_EHC_OFFSET);
+		*val = as9888_mag_scale_num(chip->ee.axis[chan->address].ehc);
 		*val2 = AS9888_MAGN_SCALE_DEN;
 		return IIO_VAL_FRACTIONAL;
+	case IIO_CHAN_INFO_CALIBBIAS:
+	case IIO_CHAN_INFO_CALIBSCALE:
+		return as9888_magn_read_cal(iio_priv(indio_dev), chan, val,
+					    val2, mask);
 	case IIO_CHAN_INFO_SAMP_FREQ:
 		return as9888_read_samp_freq(indio_dev, val);
 	default:
@@ -133,35 +213,73 @@ static int as9888_magn_read_raw(struct iio_dev *indio_dev,
 	}
 }
 
+static const int as9888_magn_calibbias_range[] = {
+	-AS9888_MAGN_CALIBBIAS_MAX, 1, AS9888_MAGN_CALIBBIAS_MAX
+};
+
+/* 0.500000 to 2.000000 in steps of 0.000001, IIO_VAL_INT_PLUS_MICRO pairs */
+static const int as9888_magn_calibscale_range[] = {
+	AS9888_MAGN_CALIBSCALE_MIN / AS9888_MAGN_CALIBSCALE_ONE,
+	AS9888_MAGN_CALIBSCALE_MIN % AS9888_MAGN_CALIBSCALE_ONE,
+	0, 1,
+	AS9888_MAGN_CALIBSCALE_MAX / AS9888_MAGN_CALIBSCALE_ONE,
+	AS9888_MAGN_CALIBSCALE_MAX % AS9888_MAGN_CALIBSCALE_ONE,
+};
+
 static int as9888_magn_read_avail(struct iio_dev *indio_dev,
 				  const struct iio_chan_spec *chan,
 				  const int **vals, int *type, int *length,
 				  long mask)
 {
-	if (mask != IIO_CHAN_INFO_SAMP_FREQ)
+	switch (mask) {
+	case IIO_CHAN_INFO_CALIBBIAS:
+		*vals = as9888_magn_calibbias_range;
+		*type = IIO_VAL_INT;
+		return IIO_AVAIL_RANGE;
+	case IIO_CHAN_INFO_CALIBSCALE:
+		*vals = as9888_magn_calibscale_range;
+		*type = IIO_VAL_INT_PLUS_MICRO;
+		return IIO_AVAIL_RANGE;
+	case IIO_CHAN_INFO_SAMP_FREQ:
+		return as9888_read_samp_freq_avail(indio_dev, vals, type,
+						   length);
+	default:
 		return -EINVAL;
-
-	return as9888_read_samp_freq_avail(indio_dev, vals, type, length);
+	}
 }
 
 static int as9888_magn_write_raw(struct iio_dev *indio_dev,
 				 const struct iio_chan_spec *chan, int val,
 				 int val2, long mask)
 {
-	if (val2 || mask != IIO_CHAN_INFO_SAMP_FREQ)
+	switch (mask) {
+	case IIO_CHAN_INFO_CALIBBIAS:
+	case IIO_CHAN_INFO_CALIBSCALE:
+		/* Also while buffering: a restore under a running client */
+		return as9888_magn_write_cal(iio_priv(indio_dev), chan, val,
+					     val2, mask);
+	case IIO_CHAN_INFO_SAMP_FREQ:
+		if (val2)
+			return -EINVAL;
+		return as9888_write_samp_freq(indio_dev, val);
+	default:
 		return -EINVAL;
-
-	return as9888_write_samp_freq(indio_dev, val);
+	}
 }
 
 static int as9888_magn_write_raw_get_fmt(struct iio_dev *indio_dev,
 					 const struct iio_chan_spec *chan,
 					 long mask)
 {
-	if (mask != IIO_CHAN_INFO_SAMP_FREQ)
+	switch (mask) {
+	case IIO_CHAN_INFO_CALIBBIAS:
+	case IIO_CHAN_INFO_SAMP_FREQ:
+		return IIO_VAL_INT;
+	case IIO_CHAN_INFO_CALIBSCALE:
+		return IIO_VAL_INT_PLUS_MICRO;
+	default:
 		return -EINVAL;
-
-	return IIO_VAL_INT;
+	}
 }
 
 static const struct iio_chan_spec_ext_info as9888_magn_ext_info[] = {
@@ -175,7 +293,11 @@ static const struct iio_chan_spec_ext_info as9888_magn_ext_info[] = {
 	.channel2 = IIO_MOD_##_axis,					\
 	.address = AS9888_SCAN_MAGN_##_axis - AS9888_SCAN_MAGN_X,	\
 	.info_mask_separate = BIT(IIO_CHAN_INFO_RAW) |			\
-			      BIT(IIO_CHAN_INFO_SCALE),			\
+			      BIT(IIO_CHAN_INFO_SCALE) |		\
+			      BIT(IIO_CHAN_INFO_CALIBBIAS) |		\
+			      BIT(IIO_CHAN_INFO_CALIBSCALE),		\
+	.info_mask_separate_available = BIT(IIO_CHAN_INFO_CALIBBIAS) |	\
+					BIT(IIO_CHAN_INFO_CALIBSCALE),	\
 	.info_mask_shared_by_all = BIT(IIO_CHAN_INFO_SAMP_FREQ),	\
 	.info_mask_shared_by_all_available = BIT(IIO_CHAN_INFO_SAMP_FREQ), \
 	.scan_index = AS9888_SCAN_MAGN_##_axis,				\
@@ -352,6 +474,14 @@ static int as9888_selftest_readings_show(struct seq_file *m, void *unused)
 }
 DEFINE_SHOW_ATTRIBUTE(as9888_selftest_readings);
 
+/* The device's state before it registers: the calibration's defaults */
+void as9888_magn_init(struct iio_dev *indio_dev)
+{
+	struct as9888_magn *magn = iio_priv(indio_dev);
+
+	as9888_magn_cal_init(&magn->cal);
+}
+
 /* Removed with the IIO device's debugfs directory when it unregisters */
 void as9888_magn_debugfs_init(struct iio_dev *indio_dev)
 {
@@ -377,7 +507,9 @@ static const struct iio_info as9888_magn_info = {
  * Fill the scan from a checked sample, false if it has no magnetometer
  * data (HST: the chip did not measure it; the data-ready trigger gives
  * this device only the samples it started with the magnetometer on).
- * A saturated axis (HOFL) reads -4096 or 4095 and is pushed as it is.
+ * Each axis is calibrated; a saturated one (its count at the rail, HOFL)
+ * or one calibrated beyond the output range is pushed as the rail of its
+ * sign, -4096 or 4095, which no calibrated value takes.
  */
 static bool as9888_magn_fill_scan(struct iio_dev *indio_dev,
 				  const struct as9888_raw_sample *s)
@@ -385,13 +517,17 @@ static bool as9888_magn_fill_scan(struct iio_dev *indio_dev,
 	struct as9888_magn *magn = iio_priv(indio_dev);
 	unsigned int bit, i = 0;
 
+	lockdep_assert_held(&magn->sensor.chip->lock);
+
 	if (FIELD_GET(AS9888_ST2_HST_MSK, s->st2))
 		return false;
 
 	iio_for_each_active_channel(indio_dev, bit) {
 		if (bit == AS9888_SCAN_MAGN_TIMESTAMP)
 			break;
-		magn->scan.chans[i++] = le16_to_cpu(s->magn[bit]);
+		/* -ERANGE leaves the rail in the scan, as said above */
+		as9888_magn_out(magn, s, bit - AS9888_SCAN_MAGN_X,
+				&magn->scan.chans[i++]);
 	}
 
 	return true;

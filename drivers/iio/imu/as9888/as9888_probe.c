@@ -418,6 +418,7 @@ int as9888_core_probe(struct device *dev, struct regmap *regmap, int irq)
 	chip->iio[AS9888_MAGN] = as9888_sensor_alloc(chip, &as9888_magn_desc);
 	if (IS_ERR(chip->iio[AS9888_MAGN]))
 		return PTR_ERR(chip->iio[AS9888_MAGN]);
+	as9888_magn_init(chip->iio[AS9888_MAGN]);
 
 	if (irq) {
 		ret = as9888_trigger_setup(chip);
