@@ -75,7 +75,7 @@ T_STEP=$(now)
 result() { # result NAME OK|FAIL DETAIL (and the time since the last result)
 	printf '%-11s %s: %s (%s)\n' "$1" "$2" "$3" "$(since "$T_STEP")"
 	T_STEP=$(now)
-	[ "$2" = ok ] || FAIL=1
+	[ "$2" = ok ] || [ "$2" = skipped ] || FAIL=1
 }
 
 "$(dirname "$0")/kernel-trees.sh" "$K" >"$SLOG/trees.log" 2>&1 ||
@@ -406,7 +406,8 @@ for ((n = 0; n < ${#COMMITS[@]}; n++)); do
 	fi
 	kd=$(cd "$GIT" && scripts/kernel-doc -Wall -none "$DRV_REL"/*.[ch] 2>&1 || echo "kernel-doc exited $?")
 	[ -z "$kd" ] || bad="$bad kernel-doc: $(printf '%s\n' "$kd" | wc -l) lines;"
-	subj=$(G log -1 --format=%s "$c")
+	# patches 1 and 2 are the bindings; patch 3 on are the stages
+	subj="$(G log -1 --format=%s "$c") [stage ${STAGE_NAMES[$((n - 2))]}]"
 	if [ -z "$bad" ]; then
 		result "build $pn" ok "$subj: W=1 C=1 $(grep -c '^  CC ' "$blog" || true) files compiled, 0 warnings, links, kernel-doc clean"
 	else
