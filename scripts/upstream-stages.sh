@@ -4,6 +4,7 @@
 # upstream-stages.sh trees OUTDIR
 # upstream-stages.sh carry DIFF FIRST-STAGE TREESDIR
 # upstream-stages.sh pack TREESDIR
+# upstream-stages.sh update REV
 #
 # The stages of the upstream series (upstream/stages/NN-name/, one per
 # patch after the binding) and the trees they stand for. The repository's
@@ -38,6 +39,16 @@
 #                  changes.patch from TREESDIR/NN-name/ (a stage directory
 #                  needs its message first). The last tree must equal the
 #                  repository's files.
+#   update REV     after a change to the driver that stops `trees`: makes
+#                  the stage trees of REV (a commit where the series
+#                  passed, with the same stages), carries the change from
+#                  REV to the working tree into them from the first stage
+#                  on (each hunk lands in the first stage where it
+#                  applies), and packs. Then run upstream-series.sh: a hunk
+#                  that landed too early (it applied there, but uses what a
+#                  later stage brings) fails that stage's build; move it
+#                  by hand in the trees, which update leaves in
+#                  $AS9888_CACHE/stages-update/.
 #
 # How to add a feature patch or fix a stage: docs/DECISIONS.md, "The
 # upstream series is a stack of stages".
@@ -55,7 +66,7 @@ STAGES="$REPO/upstream/stages"
 NOT_SENT_RE="^$AS9888_DRIVER_REL/(Kbuild|compat/.*)\$"
 
 usage() {
-	echo "usage: $0 trees OUTDIR | carry DIFF FIRST-STAGE TREESDIR | pack TREESDIR" >&2
+	echo "usage: $0 trees OUTDIR | carry DIFF FIRST-STAGE TREESDIR | pack TREESDIR | update REV" >&2
 	exit 2
 }
 
@@ -213,9 +224,34 @@ cmd_pack() {
 	done
 }
 
+cmd_update() {
+	local rev="$1" tmp="$AS9888_CACHE/stages-update" names first
+	git -C "$REPO" rev-parse -q --verify "$rev^{commit}" >/dev/null ||
+		die "$rev is not a commit"
+	rm -rf "$tmp"
+	mkdir -p "$tmp/before"
+	git -C "$REPO" archive "$rev" | tar -x -C "$tmp/before"
+	# this script, whatever REV's was
+	cp "$0" "$tmp/before/scripts/upstream-stages.sh"
+	cp "$(dirname "$0")/kernel-common.sh" "$tmp/before/scripts/kernel-common.sh"
+	"$tmp/before/scripts/upstream-stages.sh" trees "$tmp/trees" ||
+		die "the stage trees of $rev cannot be made either"
+	git -C "$REPO" diff "$rev" -- "$AS9888_DRIVER_REL" Documentation >"$tmp/change.diff"
+	mapfile -t names < <(stage_names)
+	first="${names[0]}"
+	if [ -s "$tmp/change.diff" ]; then
+		cmd_carry "$tmp/change.diff" "$first" "$tmp/trees"
+	else
+		log "no change to the driver or Documentation since $rev"
+	fi
+	cmd_pack "$tmp/trees"
+	log "trees in $tmp/trees; now run scripts/upstream-series.sh"
+}
+
 case "${1:-}" in
 trees) [ $# -eq 2 ] || usage; cmd_trees "$2" ;;
 carry) [ $# -eq 4 ] || usage; cmd_carry "$2" "$3" "$4" ;;
 pack) [ $# -eq 2 ] || usage; cmd_pack "$2" ;;
+update) [ $# -eq 2 ] || usage; cmd_update "$2" ;;
 *) usage ;;
 esac
