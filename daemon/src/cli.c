@@ -603,7 +603,7 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	if (o->command == CLI_REQUEST && optind < argc)
 		o->request = argv[optind++];
 	if (o->command == CLI_REQUEST && !o->request)
-		return bad(err, errlen, "request needs what to ask: status, check, recalibrate or rollback");
+		return bad(err, errlen, "request needs what to ask: status, check, recalibrate, rollback or magn");
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
 	if (o->ftest.confidence_1e4 && !o->ftest.permissible_error_q16)

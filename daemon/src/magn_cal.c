@@ -79,8 +79,7 @@ void magn_user_split(const struct calib_magn *m,
 	}
 }
 
-/* out = A * (v - sub) */
-static void affine(const double a[AS9888_AXES][AS9888_AXES],
+void magn_affine(const double a[AS9888_AXES][AS9888_AXES],
 		   const double v[AS9888_AXES], const double sub[AS9888_AXES],
 		   double out[AS9888_AXES])
 {
@@ -96,11 +95,11 @@ static void affine(const double a[AS9888_AXES][AS9888_AXES],
 void magn_correct_driver(const struct magn_user_cal *u,
 			 const double y[AS9888_AXES], double f[AS9888_AXES])
 {
-	affine(u->residual, y, u->offset_ut, f);
+	magn_affine(u->residual, y, u->offset_ut, f);
 }
 
 void magn_correct_raw(const struct magn_user_cal *u,
 		      const double m[AS9888_AXES], double f[AS9888_AXES])
 {
-	affine(u->soft, m, u->bias_ut, f);
+	magn_affine(u->soft, m, u->bias_ut, f);
 }

@@ -82,6 +82,11 @@ void magn_user_split(const struct calib_magn *m,
 void magn_correct_driver(const struct magn_user_cal *u,
 			 const double y[AS9888_AXES], double f[AS9888_AXES]);
 
+/* out = @a * (@v - @sub) */
+void magn_affine(const double a[AS9888_AXES][AS9888_AXES],
+		 const double v[AS9888_AXES], const double sub[AS9888_AXES],
+		 double out[AS9888_AXES]);
+
 /* f = W * (m - b): the calibrated field from an uncorrected field @m (uT) */
 void magn_correct_raw(const struct magn_user_cal *u,
 		      const double m[AS9888_AXES], double f[AS9888_AXES]);

@@ -18,6 +18,7 @@ static const struct {
 	[REQUEST_CHECK] = { "check", false, true },
 	[REQUEST_RECALIBRATE] = { "recalibrate", true, true },
 	[REQUEST_ROLLBACK] = { "rollback", true, true },
+	[REQUEST_MAGN] = { "magn", false, false },
 };
 
 #define KINDS	(sizeof(kinds) / sizeof(kinds[0]))
@@ -69,7 +70,7 @@ int request_parse(const char *line, size_t len, struct request *r, char *err,
 			break;
 	if (i == KINDS) {
 		printable(line, word, quoted);
-		snprintf(err, errlen, "unknown request \"%s\": expected one of status, check, recalibrate, rollback",
+		snprintf(err, errlen, "unknown request \"%s\": expected one of status, check, recalibrate, rollback, magn",
 			 quoted);
 		return -EINVAL;
 	}

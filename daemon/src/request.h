@@ -21,6 +21,7 @@ enum request_kind {
 	REQUEST_CHECK,
 	REQUEST_RECALIBRATE,
 	REQUEST_ROLLBACK,
+	REQUEST_MAGN,
 };
 
 struct request {

@@ -4,8 +4,8 @@
  * until something happens (no periodic wake-up):
  * - a kernel uevent says an AS9888 IIO device appeared (boot, module
  *   reload, rebind): the record is applied to it;
- * - a client on the Unix socket asks for status, check, recalibrate or
- *   rollback (request.h): the request runs in a child process whose output
+ * - a client on the Unix socket asks for status, check, recalibrate,
+ *   rollback or magn (the magnetometer's calibration; request.h): the request runs in a child process whose output
  *   goes to the client;
  * - SIGTERM, SIGINT or SIGHUP: it stops (see stop()).
  *
@@ -192,6 +192,7 @@ static int (*const request_fn[])(const struct cli_opts *o) = {
 	[REQUEST_CHECK] = cmd_check,
 	[REQUEST_RECALIBRATE] = cmd_recalibrate,
 	[REQUEST_ROLLBACK] = cmd_rollback,
+	[REQUEST_MAGN] = cmd_magn_show,
 };
 
 static int run_request(int fd, struct service *s, void *arg)

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: GPL-2.0
+/* The magnetometer calibration for applications (as9888_magn.h). */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "as9888_magn.h"
+#include "magn_cal.h"
+#include "record.h"
+
+#define NT_PER_UT	1000.0
+#define MICRO		1000000.0
+
+static int read_text(const char *path, char *buf, size_t size, size_t *len,
+		     char *err, size_t errlen)
+{
+	int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+	ssize_t n;
+	int ret;
+
+	if (fd < 0) {
+		ret = -errno;
+		snprintf(err, errlen, "%s: %s", path, strerror(-ret));
+		return ret;
+	}
+	n = read(fd, buf, size);
+	ret = n < 0 ? -errno : 0;
+	close(fd);
+	if (ret) {
+		snprintf(err, errlen, "%s: %s", path, strerror(-ret));
+		return ret;
+	}
+	if ((size_t)n == size) {
+		snprintf(err, errlen, "%s: larger than any record", path);
+		return -EINVAL;
+	}
+	*len = (size_t)n;
+
+	return 0;
+}
+
+int as9888_magn_load(const char *path, struct as9888_magn_cal *cal,
+		     char *err, size_t errlen)
+{
+	char buf[RECORD_MAX_SIZE + 1], why[256];
+	const struct calib_magn *m;
+	struct calib_record rec;
+	struct magn_driver_cal d;
+	struct magn_user_cal u;
+	size_t len;
+	int i, ret;
+
+	ret = read_text(path, buf, sizeof(buf), &len, err, errlen);
+	if (ret)
+		return ret;
+	if (record_parse(buf, len, &rec, why, sizeof(why))) {
+		snprintf(err, errlen, "%s: not a valid record: %s", path, why);
+		return -EINVAL;
+	}
+	m = &rec.magn;
+	if (!m->present) {
+		snprintf(err, errlen, "%s has no magnetometer calibration: run as9888-calibd magn-calibrate",
+			 path);
+		return -ENODATA;
+	}
+	if (magn_driver_split(m, rec.eeprom, &d)) {
+		snprintf(err, errlen, "%s: the hard iron is beyond the driver's calibbias range",
+			 path);
+		return -ERANGE;
+	}
+	magn_user_split(m, rec.eeprom, &d, &u);
+	memset(cal, 0, sizeof(*cal));
+	for (i = 0; i < 3; i++) {
+		cal->hard_iron_ut[i] = u.bias_ut[i];
+		cal->calibbias[i] = d.calibbias[i];
+		cal->calibscale[i] = d.calibscale_micro[i] / MICRO;
+		cal->offset_ut[i] = u.offset_ut[i];
+		cal->hal_bias_ut[i] = u.hal_bias_ut[i];
+		memcpy(cal->soft_iron[i], u.soft[i], sizeof(cal->soft_iron[i]));
+		memcpy(cal->residual[i], u.residual[i], sizeof(cal->residual[i]));
+	}
+	cal->field_ut = m->field_nt / NT_PER_UT;
+	cal->residual_ut = m->residual_nt / NT_PER_UT;
+	cal->coverage = m->coverage_milli / 1000.0;
+	cal->samples = m->samples;
+	cal->learned = m->learned;
+
+	return 0;
+}
+
+void as9888_magn_correct(const struct as9888_magn_cal *cal, const double y[3],
+			 double f[3])
+{
+	magn_affine(cal->residual, y, cal->offset_ut, f);
+}
+
+void as9888_magn_correct_uncalibrated(const struct as9888_magn_cal *cal,
+				      const double m[3], double f[3])
+{
+	magn_affine(cal->soft_iron, m, cal->hard_iron_ut, f);
+}
+
+void as9888_magn_hal_bias(const struct as9888_magn_cal *cal, double bias[3])
+{
+	memcpy(bias, cal->hal_bias_ut, sizeof(cal->hal_bias_ut));
+}
