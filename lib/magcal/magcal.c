@@ -77,6 +77,7 @@ void magcal_config_default(struct magcal_config *cfg)
 	cfg->field_max_ut = 70.0;
 	cfg->max_residual_ut = 1.5;
 	cfg->outlier_ut = 2.0;
+	cfg->max_uncertainty_deg = 0.6;
 }
 
 static bool config_ok(const struct magcal_config *c)
@@ -85,7 +86,7 @@ static bool config_ok(const struct magcal_config *c)
 	       c->min_coverage >= 0 && c->min_coverage <= 1 &&
 	       c->min_separation_ut >= 0 && c->field_min_ut >= 0 &&
 	       c->field_max_ut > c->field_min_ut && c->max_residual_ut > 0 &&
-	       c->outlier_ut > 0;
+	       c->outlier_ut > 0 && c->max_uncertainty_deg > 0;
 }
 
 struct magcal_session *magcal_new(const struct magcal_config *cfg)
@@ -603,15 +604,14 @@ static void ransac_start(const struct magcal_session *s, bool *use)
 
 /* Rounds of fit and selection; false when a fit failed */
 static bool robust_fit(const struct magcal_session *s, bool *use,
-		       struct magcal_result *r)
+		       struct fit *f, struct magcal_result *r)
 {
-	struct fit f;
 	double limit;
 	int round;
 
 	ransac_start(s, use);
 	for (round = 0; round < ROBUST_ROUNDS; round++) {
-		if (!fit_used(s, use, &f) || !fit_result(&f, r))
+		if (!fit_used(s, use, f) || !fit_result(f, r))
 			return false;
 		limit = MAD_TO_SIGMA * ROBUST_SIGMAS *
 			abs_quantile(s, use, r, 0.5);
@@ -619,7 +619,62 @@ static bool robust_fit(const struct magcal_session *s, bool *use,
 		if (!select_within(s, r, limit, use))
 			return true;
 	}
-	return fit_used(s, use, &f) && fit_result(&f, r);
+	return fit_used(s, use, f) && fit_result(f, r);
+}
+
+/*
+ * How well the samples pin the fit down: the standard deviations of the
+ * nine parameters from the data alone (sigma^2 (J^T J)^-1, no prior), as
+ * a direction error of the calibrated field in degrees: the bias' share
+ * (its largest std over F) and the shape's (the largest std of L, which
+ * is relative), combined. A direction the motion did not observe has a
+ * huge std: the fit there is the prior's guess, not a measurement.
+ */
+static double uncertainty_deg(const struct magcal_session *s, const bool *use,
+			      const struct fit *f,
+			      const struct magcal_result *r)
+{
+	double jtj[NPARAM][NPARAM] = { { 0 } }, jac[NPARAM], mn[3];
+	double a[NPARAM][NPARAM], e[NPARAM], col[NPARAM], var[NPARAM];
+	double sq = 0, sigma2, eb = 0, el = 0, res;
+	unsigned int i, n = 0;
+	int j, k;
+
+	for (i = 0; i < s->n; i++) {
+		if (!use[i])
+			continue;
+		normalise(f, s->s[i].m, mn);
+		res = residual(f->x, mn, jac);
+		sq += res * res;
+		n++;
+		for (j = 0; j < NPARAM; j++)
+			for (k = 0; k < NPARAM; k++)
+				jtj[j][k] += jac[j] * jac[k];
+	}
+	if (n <= NPARAM)
+		return INFINITY;
+	/*
+	 * The noise seen, but no more than the residual allowed: samples off
+	 * the ellipsoid are the residual's verdict, this one is geometry's
+	 */
+	sigma2 = fmin(sq / (n - NPARAM),
+		      pow(s->cfg.max_residual_ut / r->field_ut, 2));
+	for (j = 0; j < NPARAM; j++) {
+		memcpy(a, jtj, sizeof(a));
+		for (k = 0; k < NPARAM; k++) {
+			a[k][k] += 1e-12;
+			e[k] = k == j;
+		}
+		if (!solve(NPARAM, a, e, col))
+			return INFINITY;
+		var[j] = sigma2 * col[j];
+	}
+	for (j = 0; j < 3; j++) {
+		eb = fmax(eb, sqrt(fmax(0, var[j])) * f->f0 / r->field_ut);
+		el = fmax(el, sqrt(fmax(0, var[3 + j])));
+		el = fmax(el, sqrt(fmax(0, var[6 + j])));
+	}
+	return hypot(eb, el) * DEG_PER_RAD;
 }
 
 static void quality(const struct magcal_session *s, const bool *use,
@@ -659,7 +714,8 @@ static void quality(const struct magcal_session *s, const bool *use,
 static enum magcal_status verdict(const struct magcal_config *cfg,
 				  const struct magcal_result *r)
 {
-	if (r->used < cfg->min_samples || r->coverage < cfg->min_coverage)
+	if (r->used < cfg->min_samples || r->coverage < cfg->min_coverage ||
+	    !(r->uncertainty_deg <= cfg->max_uncertainty_deg))
 		return MAGCAL_NO_COVERAGE;
 	if (r->field_ut < cfg->field_min_ut || r->field_ut > cfg->field_max_ut)
 		return MAGCAL_FIELD_IMPLAUSIBLE;
@@ -671,6 +727,7 @@ static enum magcal_status verdict(const struct magcal_config *cfg,
 int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 {
 	bool use[MAGCAL_MAX_SAMPLES];
+	struct fit f;
 	unsigned int i;
 
 	if (!s || !r)
@@ -684,11 +741,12 @@ int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 		r->status = MAGCAL_NO_COVERAGE;
 		return 0;
 	}
-	if (!robust_fit(s, use, r)) {
+	if (!robust_fit(s, use, &f, r)) {
 		r->status = MAGCAL_SINGULAR;
 		return 0;
 	}
 	quality(s, use, r);
+	r->uncertainty_deg = uncertainty_deg(s, use, &f, r);
 	r->status = verdict(&s->cfg, r);
 	return 0;
 }

@@ -240,6 +240,43 @@ static void test_no_coverage(void **state)
 	magcal_free(s);
 }
 
+/*
+ * Coverage by cells is not all: a 60-degree cap with noise hits enough
+ * cells when the gate is off, but leaves the shape undetermined; the
+ * fit's own uncertainty says so.
+ */
+static void test_uncertain(void **state)
+{
+	struct magcal_config cfg;
+	struct magcal_session *s;
+	struct board b = board_a;
+	struct magcal_result r;
+	double d[3], m[3];
+	int i;
+
+	rng_state = 8;
+	b.noise = 0.4;
+	magcal_config_default(&cfg);
+	cfg.min_coverage = 0;
+	s = magcal_new(&cfg);
+	for (i = 0; i < 200; i++) {
+		direction(60, d);
+		reading(&b, d, 48, m);
+		magcal_add(s, m, NULL);
+	}
+	assert_int_equal(magcal_solve(s, &r), 0);
+	assert_int_equal(r.status, MAGCAL_NO_COVERAGE);
+	assert_true(r.uncertainty_deg > cfg.max_uncertainty_deg);
+	assert_true(r.residual_ut < cfg.max_residual_ut);
+	magcal_free(s);
+	/* the whole sphere: certain */
+	s = feed(&b, 300, 180, 48);
+	assert_int_equal(magcal_solve(s, &r), 0);
+	assert_int_equal(r.status, MAGCAL_OK);
+	assert_true(r.uncertainty_deg < 0.2);
+	magcal_free(s);
+}
+
 /* A field of 120 uT is no Earth's */
 static void test_field_implausible(void **state)
 {
@@ -382,6 +419,7 @@ int main(void)
 		cmocka_unit_test(test_outliers),
 		cmocka_unit_test(test_residual_high),
 		cmocka_unit_test(test_no_coverage),
+		cmocka_unit_test(test_uncertain),
 		cmocka_unit_test(test_field_implausible),
 		cmocka_unit_test(test_progress),
 		cmocka_unit_test(test_add),

@@ -455,8 +455,9 @@ static void evaluate(unsigned int board, s32 t_mdegc,
 
 static void print_header(void)
 {
-	printf("%-5s %5s %-6s %7s %5s %6s %6s | %-26s | %-26s | %s\n",
-	       "board", "degC", "status", "used/rj", "cover", "F", "b err",
+	printf("%-5s %5s %-6s %7s %5s %5s %6s %6s | %-26s | %-26s | %s\n",
+	       "board", "degC", "status", "used/rj", "cover", "unc", "F",
+	       "b err",
 	       "full: |B| rms abs  hd rms/worst", "driver only: |B|  hd rms/worst",
 	       "uncalibrated hd rms");
 }
@@ -465,11 +466,12 @@ static void print_row(const char *name, s32 t_mdegc, const struct outcome *o)
 {
 	const struct score *f = &o->sc[CORR_FULL], *d = &o->sc[CORR_DRIVER];
 
-	printf("%-5s %5.0f %-6s %3u/%-3u %5.2f %6.2f %6.3f | %5.2f %5.2f %6.2f %6.2f |"
+	printf("%-5s %5.0f %-6s %3u/%-3u %5.2f %5.2f %6.2f %6.3f | %5.2f %5.2f %6.2f %6.2f |"
 	       " %5.2f %6.2f %6.2f      | %7.1f\n",
 	       name, t_mdegc / 1000.0,
 	       o->fit.status == MAGCAL_OK ? "ok" : "FAIL", o->fit.used,
-	       o->fit.rejected, o->fit.coverage, o->fit.field_ut, o->bias_err,
+	       o->fit.rejected, o->fit.coverage, o->fit.uncertainty_deg,
+	       o->fit.field_ut, o->bias_err,
 	       f->mag_rms, f->mag_abs_rms, f->head_rms, f->head_worst,
 	       d->mag_rms, d->head_rms, d->head_worst,
 	       o->sc[CORR_NONE].head_rms);
@@ -554,6 +556,7 @@ static void magnet(unsigned int board, const s32 peak_nt[3], u32 samples)
 	magcal_config_default(&naive);
 	naive.outlier_ut = 1e6;		/* no sample is ever an outlier */
 	naive.max_residual_ut = 1e6;	/* and no residual too high */
+	naive.max_uncertainty_deg = 1e6;	/* nor the fit uncertain */
 	evaluate(board, 25000, &naive, peak_nt, samples, &o);
 	print_header();
 	print_row("naive", 25000, &o);
