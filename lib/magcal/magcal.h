@@ -38,7 +38,8 @@
  * enum magcal_status - the verdict of magcal_solve()
  * @MAGCAL_OK:			the fit meets every quality figure
  * @MAGCAL_NO_COVERAGE:		too few samples, or they cover too little of
- *				the sphere of directions (keep moving)
+ *				the sphere of directions, or they leave the
+ *				fit uncertain (keep moving)
  * @MAGCAL_FIELD_IMPLAUSIBLE:	the fitted magnitude is outside the Earth's
  *				(config field_min_ut .. field_max_ut): a
  *				magnet, a wrong scale
@@ -67,6 +68,8 @@ enum magcal_status {
  * @max_residual_ut:	residual rms above this: MAGCAL_RESIDUAL_HIGH
  * @outlier_ut:		a sample whose residual exceeds the larger of this
  *			and 4 robust standard deviations is rejected
+ * @max_uncertainty_deg: the fit's own uncertainty (see magcal_result)
+ *			above this: MAGCAL_NO_COVERAGE
  */
 struct magcal_config {
 	unsigned int max_samples;
@@ -77,6 +80,7 @@ struct magcal_config {
 	double field_max_ut;
 	double max_residual_ut;
 	double outlier_ut;
+	double max_uncertainty_deg;
 };
 
 /**
@@ -91,6 +95,10 @@ struct magcal_config {
  * @coverage:	fraction of the sphere of directions covered, 0..1
  * @used:	samples the fit used
  * @rejected:	samples left out as outliers
+ * @uncertainty_deg: how well the samples pin the fit down, as a
+ *		direction error of the calibrated field (degrees, one standard
+ *		deviation, from the parameters' covariance without the prior):
+ *		large when the motion left a direction unobserved
  * @dip_deg:	field inclination seen against gravity (mean angle below
  *		the horizon), when gravity was given with the samples used;
  *		else 0
@@ -105,6 +113,7 @@ struct magcal_result {
 	double coverage;
 	unsigned int used;
 	unsigned int rejected;
+	double uncertainty_deg;
 	double dip_deg;
 	bool has_dip;
 };
