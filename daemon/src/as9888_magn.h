@@ -94,6 +94,19 @@ void as9888_magn_correct_uncalibrated(const struct as9888_magn_cal *cal,
 /* The bias a HAL reports with TYPE_MAGNETIC_FIELD_UNCALIBRATED (uT) */
 void as9888_magn_hal_bias(const struct as9888_magn_cal *cal, double bias[3]);
 
+/*
+ * Hand one sample the application read anyway to the calibration daemon
+ * at @socket_path (its "magn-feed" request): @y the driver's output as
+ * for as9888_magn_correct() (uT), @accel the accelerometer's raw reading
+ * at the same time. The daemon refines the calibration from them (its
+ * field mode; it never reads the magnetometer itself) and rewrites the
+ * record at most every 6 hours. Call it about once a second while the
+ * magnetometer is in use, not for every sample: each call is a round
+ * trip to the daemon. 0, or -errno with why in @err.
+ */
+int as9888_magn_feed(const char *socket_path, const double y[3],
+		     const double accel[3], char *err, size_t errlen);
+
 #ifdef __cplusplus
 }
 #endif

@@ -4,11 +4,14 @@
 #include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include "as9888_magn.h"
 #include "magn_cal.h"
 #include "record.h"
+#include "request.h"
 
 #define NT_PER_UT	1000.0
 #define MICRO		1000000.0
@@ -100,6 +103,56 @@ void as9888_magn_correct_uncalibrated(const struct as9888_magn_cal *cal,
 				      const double m[3], double f[3])
 {
 	magn_affine(cal->soft_iron, m, cal->hard_iron_ut, f);
+}
+
+int as9888_magn_feed(const char *socket_path, const double y[3],
+		     const double accel[3], char *err, size_t errlen)
+{
+	struct sockaddr_un sa = { .sun_family = AF_UNIX };
+	char line[REQUEST_LINE_MAX], reply[512];
+	size_t have = 0;
+	ssize_t n;
+	int fd, len, status, ret = 0;
+
+	len = snprintf(line, sizeof(line), "magn-feed %.3f %.3f %.3f %.0f %.0f %.0f\n",
+		       y[0], y[1], y[2], accel[0], accel[1], accel[2]);
+	if (len < 0 || (size_t)len >= sizeof(line)) {
+		snprintf(err, errlen, "sample out of range");
+		return -ERANGE;
+	}
+	if (strlen(socket_path) >= sizeof(sa.sun_path)) {
+		snprintf(err, errlen, "%s: path too long", socket_path);
+		return -ENAMETOOLONG;
+	}
+	strcpy(sa.sun_path, socket_path);
+	fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+	if (fd < 0 || connect(fd, (struct sockaddr *)&sa, sizeof(sa)) ||
+	    write(fd, line, (size_t)len) != len)
+		ret = -errno;
+	/* the reply: the daemon's output, then "exit status N" */
+	while (!ret && (n = read(fd, reply + have, sizeof(reply) - 1 - have)) > 0) {
+		have += (size_t)n;
+		if (have == sizeof(reply) - 1) {
+			/* keep the tail, where the status line is */
+			memmove(reply, reply + have / 2, have - have / 2);
+			have -= have / 2;
+		}
+	}
+	if (fd >= 0)
+		close(fd);
+	if (ret) {
+		snprintf(err, errlen, "%s: %s", socket_path, strerror(-ret));
+		return ret;
+	}
+	reply[have] = '\0';
+	status = request_reply_status(reply, have, &have);
+	if (status != 0) {
+		snprintf(err, errlen, "the daemon refused the sample (%s%d)",
+			 status < 0 ? "no status, " : "exit status ", status);
+		return -EIO;
+	}
+
+	return 0;
 }
 
 void as9888_magn_hal_bias(const struct as9888_magn_cal *cal, double bias[3])

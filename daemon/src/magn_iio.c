@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "iio.h"
@@ -163,13 +164,38 @@ int magn_iio_write(const char *magn_dir, const struct magn_driver_cal *d,
 	return 0;
 }
 
+/*
+ * The magnetometer device beside @accel_dir. The driver registers it just
+ * after the accelerometer's, whose appearance started this restore: when
+ * a calibration waits for it, it is given MAGN_APPEAR_TRIES looks
+ * MAGN_APPEAR_WAIT_NS apart (only at a device's appearance, never idle)
+ */
+#define MAGN_APPEAR_TRIES	10
+#define MAGN_APPEAR_WAIT_NS	100000000L
+
+static int find_magn(const char *accel_dir, bool wait, char *magn, size_t size)
+{
+	struct timespec ts = { .tv_nsec = MAGN_APPEAR_WAIT_NS };
+	int i, ret = -ENOENT;
+
+	for (i = 0; i < (wait ? MAGN_APPEAR_TRIES : 1); i++) {
+		if (i)
+			nanosleep(&ts, NULL);
+		ret = iio_find_magn(accel_dir, magn, size, NULL, 0);
+		if (ret != -ENOENT)
+			break;
+	}
+
+	return ret;
+}
+
 int magn_iio_apply(const char *accel_dir, const struct calib_record *rec)
 {
 	char magn[IIO_PATH_MAX], err[IIO_ERR_LEN];
 	struct magn_driver_cal d;
 	int ret;
 
-	if (iio_find_magn(accel_dir, magn, sizeof(magn), NULL, 0)) {
+	if (find_magn(accel_dir, rec->magn.present, magn, sizeof(magn))) {
 		if (rec->magn.present)
 			fprintf(stderr, "as9888-calibd: warning: no %s IIO device beside %s: the magnetometer calibration is not applied (the accelerometer's is)\n",
 				IIO_MAGN_NAME, accel_dir);

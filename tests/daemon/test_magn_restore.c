@@ -24,6 +24,7 @@
 #include "iio.h"
 #include "magn_cal.h"
 #include "magn_iio.h"
+#include "magn_example.h"
 #include "record.h"
 #include "session.h"
 
@@ -36,22 +37,6 @@ static const struct calib_record test_record = {
 	.created = 1795305600,
 };
 
-/* b = (30, -45.5, 100.25) uT; W symmetric with cross terms */
-static const struct calib_magn test_magn = {
-	.present = true,
-	.hard_iron_nt = { 30000, -45500, 100250 },
-	.soft_iron_micro = {
-		{ 1020000, 12000, -31000 },
-		{ 12000, 985000, 4000 },
-		{ -31000, 4000, 1003000 },
-	},
-	.field_nt = 48512,
-	.residual_nt = 321,
-	.coverage_milli = 875,
-	.samples = 300,
-	.learned = 1795392000,
-};
-
 static void write_record(const struct fake_sysfs *f, const char *name,
 			 bool with_magn, char *path, size_t size)
 {
@@ -61,7 +46,7 @@ static void write_record(const struct fake_sysfs *f, const char *name,
 
 	memcpy(rec.eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
 	if (with_magn)
-		rec.magn = test_magn;
+		rec.magn = magn_example;
 	len = record_format(&rec, buf, sizeof(buf));
 	assert_true(len > 0);
 	fake_put_bytes(f->root, name, buf, (size_t)len);
@@ -203,7 +188,7 @@ static void magn_read_back_checked(void **state)
 static void split_refuses_out_of_range(void **state)
 {
 	uint8_t ee[AS9888_EEPROM_LEN];
-	struct calib_magn m = test_magn;
+	struct calib_magn m = magn_example;
 	struct magn_driver_cal d;
 
 	(void)state;
@@ -229,8 +214,8 @@ static void split_recombines(void **state)
 	int n, i;
 
 	(void)state;
-	assert_int_equal(magn_driver_split(&test_magn, fake_example_eeprom, &d), 0);
-	magn_user_split(&test_magn, fake_example_eeprom, &d, &u);
+	assert_int_equal(magn_driver_split(&magn_example, fake_example_eeprom, &d), 0);
+	magn_user_split(&magn_example, fake_example_eeprom, &d, &u);
 	magn_scale_ut(fake_example_eeprom, s);
 	srand(5);
 	for (n = 0; n < 1000; n++) {
@@ -249,7 +234,7 @@ static void split_recombines(void **state)
 
 			for (j = 0; j < 3; j++)
 				expect_i += u.soft[i][j] *
-					    (m[j] - test_magn.hard_iron_nt[j] / 1000.0);
+					    (m[j] - magn_example.hard_iron_nt[j] / 1000.0);
 			assert_true(fabs(want[i] - expect_i) < 1e-9);
 			assert_true(fabs(f[i] - want[i]) < 1e-9);
 		}
