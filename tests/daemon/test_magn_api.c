@@ -2,7 +2,8 @@
 /*
  * as9888_magn.h, as an application uses it (linked with libas9888magn
  * alone): the record read, the driver's output corrected to W * (m - b),
- * the HAL's bias, and every record it must not use refused with a reason.
+ * the HAL's bias, every record it must not use refused with a reason, and
+ * a sample handed to the daemon.
  */
 #include <errno.h>
 #include <math.h>
@@ -12,6 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -138,6 +142,62 @@ static void refuses(void **state)
 	assert_int_equal(as9888_magn_load(link, &cal, err, sizeof(err)), -ELOOP);
 }
 
+/*
+ * A daemon stand-in on @path: takes one connection, checks its line is
+ * @want, answers @reply, exits 0 when the line was right
+ */
+static pid_t serve_once(const char *path, const char *want, const char *reply)
+{
+	struct sockaddr_un sa = { .sun_family = AF_UNIX };
+	int fd = socket(AF_UNIX, SOCK_STREAM, 0);
+	pid_t pid;
+
+	assert_true(fd >= 0);
+	snprintf(sa.sun_path, sizeof(sa.sun_path), "%s", path);
+	assert_int_equal(bind(fd, (struct sockaddr *)&sa, sizeof(sa)), 0);
+	assert_int_equal(listen(fd, 1), 0);
+	pid = fork();
+	assert_true(pid >= 0);
+	if (!pid) {
+		char line[128] = { 0 };
+		int c = accept(fd, NULL, NULL);
+		ssize_t n = c < 0 ? -1 : read(c, line, sizeof(line) - 1);
+		bool ok = n > 0 && !strcmp(line, want);
+
+		if (c >= 0 && write(c, reply, strlen(reply)) < 0)
+			ok = false;
+		_exit(ok ? 0 : 1);
+	}
+	close(fd);
+
+	return pid;
+}
+
+static void feeds_the_daemon(void **state)
+{
+	static const double y[3] = { 12.3456, -0.5, 40 }, a[3] = { 3, -1, 255 };
+	static const char *const line = "magn-feed 12.346 -0.500 40.000 3 -1 255\n";
+	char path[128], err[256];
+	int status;
+	pid_t pid;
+
+	snprintf(path, sizeof(path), "%s/sock", dir);
+	pid = serve_once(path, line, "fit: ok\nexit status 0\n");
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), 0);
+	assert_int_equal(waitpid(pid, &status, 0), pid);
+	assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+	unlink(path);
+	/* refused by the daemon: said */
+	pid = serve_once(path, line, "as9888-calibd: no record\nexit status 1\n");
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), -EIO);
+	assert_non_null(strstr(err, "exit status 1"));
+	waitpid(pid, &status, 0);
+	unlink(path);
+	/* no daemon */
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), -ENOENT);
+	assert_non_null(strstr(err, path));
+}
+
 static int setup(void **state)
 {
 	snprintf(dir, sizeof(dir), "/tmp/as9888-magn-api-XXXXXX");
@@ -157,6 +217,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(loads_and_corrects),
 		cmocka_unit_test(refuses),
+		cmocka_unit_test(feeds_the_daemon),
 	};
 
 	return cmocka_run_group_tests_name("magn-api", tests, setup, teardown);
