@@ -94,6 +94,36 @@ else
 		says "disturbance\|not the Earth\|orientations" err && cmp -s "$rec" "$work/before"'
 fi
 
+# through the driver (a sysfs tree like its own, readings that never
+# change: a device lying still), in real time
+sys=$work/sys
+bus=$sys/devices/i2c/1-000c
+mkdir -p "$bus/iio:device0" "$bus/iio:device1" "$bus/as9888-eeprom0" "$sys/bus/iio/devices"
+ln -s ../../../devices/i2c/1-000c/iio:device0 "$sys/bus/iio/devices/iio:device0"
+ln -s ../../../devices/i2c/1-000c/iio:device1 "$sys/bus/iio/devices/iio:device1"
+printf 'as9888-accel\n' >"$bus/iio:device0/name"
+printf 'as9888-magn\n' >"$bus/iio:device1/name"
+printf '\x9a\x71\x15\x5c\x80\x85\x7b\x1c\x63\xa2\x38\xe6\x9c\x0d\x8f\x8c\x04\x65\xc3\x88\x50' \
+	>"$bus/as9888-eeprom0/nvmem"
+for a in x y z; do
+	echo 100 >"$bus/iio:device1/in_magn_${a}_raw"
+	echo 5 >"$bus/iio:device0/in_accel_${a}_raw"
+	echo 0 >"$bus/iio:device0/in_accel_${a}_calibbias"
+done
+echo 256 >"$bus/iio:device0/in_accel_z_raw"
+cp "$rec" "$work/before"
+run magn-calibrate --backend iio --timeout 2 --record "$rec"
+check "through the driver, a device lying still: exit 1, not enough orientations, record unchanged" eval '
+	[ $rc -eq 1 ] && says "not enough orientations covered" err && cmp -s "$rec" "$work/before"'
+printf '\x01' | dd of="$bus/as9888-eeprom0/nvmem" bs=1 seek=4 conv=notrunc status=none
+run magn-calibrate --backend iio --timeout 2 --record "$rec"
+check "through the driver, another chip: refused before sampling, says to run factory-test" eval '
+	[ $rc -eq 1 ] && says "run factory-test on this unit first" err && ! says "orientations" err'
+rm -rf "$bus/iio:device1" "$sys/bus/iio/devices/iio:device1"
+run magn-calibrate --backend iio --timeout 2 --record "$rec"
+check "through a driver without the magnetometer device: exit 1, says so" eval '
+	[ $rc -eq 1 ] && says "no as9888-magn IIO device" err'
+
 run magn-calibrate --sim-clock virtual --unit /dev/null --timeout 0 --record "$rec"
 check "--timeout 0 is a usage error" eval '[ $rc -eq 2 ] && says "timeout takes seconds 1..3600" err'
 run magn-calibrate --sim-clock virtual --unit /dev/null --record "$work/none"
