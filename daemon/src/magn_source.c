@@ -22,6 +22,8 @@
 /* The chip's output codes: -4096 and 4095 mean overflow (datasheet 5) */
 #define MAGN_RAW_MAX	4096
 #define ACCEL_RAW_MAX	2048
+/* (count + calibbias) * calibscale: the driver's largest raw reading */
+#define MAGN_RAW_RANGE_MAX	((MAGN_RAW_MAX + MAGN_CALIBBIAS_MAX) * 2)
 #define MICRO		1000000.0
 
 /**
@@ -198,6 +200,9 @@ static int read_raw(const char *dir, const char *name, long max, long *v,
 
 	if (ret == -ERANGE)
 		return ret;	/* the driver's overflow */
+	if (ret == -EBUSY)
+		return fail(err, errlen, ret, "%s/%s: busy: another program has the device's buffer enabled (a HAL, iio_readdev); stop it for the session",
+			    dir, name);
 	if (ret < 0)
 		return fail(err, errlen, ret, "%s/%s: cannot read: %s", dir, name,
 			    strerror(-ret));
@@ -225,8 +230,7 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 		double d = s->driver.calibscale_micro[axis] / MICRO;
 
 		ret = read_raw(s->magn_dir, magn_raw[axis],
-			       2 * MAGN_RAW_MAX + MAGN_CALIBBIAS_MAX, &v, err,
-			       errlen);
+			       MAGN_RAW_RANGE_MAX, &v, err, errlen);
 		if (ret)
 			return ret;
 		r->field_ut[axis] = (v / d - s->driver.calibbias[axis]) *
