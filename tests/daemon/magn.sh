@@ -152,6 +152,16 @@ check "the calibration it replaced is kept as the previous record" \
 check "the samples stay on the runtime directory, at most 300" eval '
 	[ "$(grep -vc "^#" "$work/run/magn-samples")" -eq 300 ]'
 
+# after all that, idle again: the field mode leaves nothing behind that
+# wakes the daemon (no timer, no file watch); as daemon.sh measures it
+switches() { awk '/^voluntary_ctxt_switches/ { print $2 }' "/proc/$pid/status"; }
+sleep 1	# the last request's child reaped
+w0=$(switches)
+sleep 3
+w1=$(switches)
+echo "# idle for 3 s after the field mode: $((w1 - w0)) wake-ups"
+check "idle after the field mode: no wake-ups" test $((w1 - w0)) -eq 0
+
 kill "$pid"
 wait "$pid" 2>/dev/null
 pid=
