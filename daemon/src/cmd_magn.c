@@ -102,6 +102,11 @@ int cmd_magn_calibrate(const struct cli_opts *o)
 		fprintf(stderr, "as9888-calibd: magn-calibrate adds to the record of factory-test (the chip's identity): run factory-test first\n");
 		return EXIT_FAILURE;
 	}
+	if (rec.simulated && o->backend != CLI_BACKEND_SIM) {
+		fprintf(stderr, "as9888-calibd: %s was written by a factory test on the simulator (source = simulator), not on this chip: run factory-test on this unit; nothing measured\n",
+			o->record_path);
+		return EXIT_FAILURE;
+	}
 	if (open_source(o, &rec, &src, &driver, accel, sizeof(accel)))
 		return EXIT_FAILURE;
 	printf("Turn the device slowly through every direction (a figure eight, then over on every side); at most %u s\n",

@@ -52,7 +52,7 @@ int as9888_magn_load(const char *path, struct as9888_magn_cal *cal,
 	struct calib_record rec;
 	struct magn_driver_cal d;
 	struct magn_user_cal u;
-	size_t len;
+	size_t len = 0;
 	int i, ret;
 
 	ret = read_text(path, buf, sizeof(buf), &len, err, errlen);

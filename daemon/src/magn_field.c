@@ -113,7 +113,7 @@ static int store_sample(const char *path, const double m[3], const double a[3],
 	fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
 	if (fd < 0 || flock(fd, LOCK_EX)) {
 		ret = -errno;
-		snprintf(err, errlen, "%s: %s", path, strerror(-ret));
+		snprintf(err, errlen, "%.300s: %s", path, strerror(-ret));
 		if (fd >= 0)
 			close(fd);
 		free(text);

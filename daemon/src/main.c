@@ -5,6 +5,7 @@
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "commands.h"
@@ -129,8 +130,13 @@ int main(int argc, char **argv)
 
 	switch (o.command) {
 	case CLI_HELP:
-		fputs(usage_text, stdout);
-		return EXIT_SUCCESS;
+		/*
+		 * In one write: the text is longer than stdio's pipe buffer,
+		 * and a reader that stops at the line it wants ("grep -q")
+		 * must not kill us with SIGPIPE on a second write
+		 */
+		return write(STDOUT_FILENO, usage_text, sizeof(usage_text) - 1) ==
+		       (ssize_t)sizeof(usage_text) - 1 ? EXIT_SUCCESS : EXIT_FAILURE;
 	case CLI_FACTORY_TEST:
 		return cmd_factory_test(&o);
 	case CLI_RESTORE:
