@@ -43,7 +43,8 @@ static bool read_number(const char *dir, const char *attr, double *v)
 	FILE *f;
 	bool ok;
 
-	snprintf(path, sizeof(path), "%s/%s", dir, attr);
+	if (snprintf(path, sizeof(path), "%s/%s", dir, attr) >= (int)sizeof(path))
+		return false;
 	f = fopen(path, "r");
 	if (!f)
 		return false;
@@ -67,8 +68,9 @@ static bool find_device(const char *sysfs, const char *name, char *dir,
 	if (!d)
 		return false;
 	while (!found && (e = readdir(d))) {
-		snprintf(dir, len, "%s/%s", base, e->d_name);
-		snprintf(np, sizeof(np), "%s/name", dir);
+		if (snprintf(dir, len, "%s/%s", base, e->d_name) >= (int)len ||
+		    snprintf(np, sizeof(np), "%s/name", dir) >= (int)sizeof(np))
+			continue;	/* a path too long is not ours */
 		f = fopen(np, "r");
 		if (!f)
 			continue;
@@ -106,7 +108,9 @@ static bool read_vector(const char *dir, const char *type, double v[3])
 		}
 		raw[i] *= scale;
 	}
-	snprintf(path, sizeof(path), "%s/in_%s_mount_matrix", dir, type);
+	if (snprintf(path, sizeof(path), "%s/in_%s_mount_matrix", dir,
+		     type) >= (int)sizeof(path))
+		return false;
 	f = fopen(path, "r");
 	if (f) {
 		if (fscanf(f, "%lf, %lf, %lf; %lf, %lf, %lf; %lf, %lf, %lf",

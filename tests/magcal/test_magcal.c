@@ -356,6 +356,46 @@ static void test_add(void **state)
 	assert_int_equal(magcal_solve(NULL, NULL), -EINVAL);
 }
 
+/* Degenerate input: a status, never a crash or a NaN called ok */
+static void test_degenerate(void **state)
+{
+	struct magcal_session *s = magcal_new(NULL);
+	struct magcal_result r;
+	double m[3];
+	int i;
+
+	/* samples on a line */
+	for (i = 0; i < 100; i++) {
+		m[0] = 3.0 * i;
+		m[1] = 2.0 * i;
+		m[2] = -1.0 * i;
+		magcal_add(s, m, NULL);
+	}
+	assert_int_equal(magcal_solve(s, &r), 0);
+	assert_int_not_equal(r.status, MAGCAL_OK);
+	/* on a plane circle: no shape along its normal */
+	magcal_reset(s);
+	for (i = 0; i < 100; i++) {
+		m[0] = 50 * cos(i * 0.0628) + 10;
+		m[1] = 50 * sin(i * 0.0628) - 20;
+		m[2] = 5;
+		magcal_add(s, m, NULL);
+	}
+	assert_int_equal(magcal_solve(s, &r), 0);
+	assert_int_not_equal(r.status, MAGCAL_OK);
+	/* huge values */
+	magcal_reset(s);
+	for (i = 0; i < 50; i++) {
+		m[0] = 1e150 * (i + 1);
+		m[1] = -1e150 * i;
+		m[2] = 1e149;
+		magcal_add(s, m, NULL);
+	}
+	assert_int_equal(magcal_solve(s, &r), 0);
+	assert_int_not_equal(r.status, MAGCAL_OK);
+	magcal_free(s);
+}
+
 /* R D = W, and apply gives W (m - b) */
 static void test_split_apply(void **state)
 {
@@ -423,6 +463,7 @@ int main(void)
 		cmocka_unit_test(test_field_implausible),
 		cmocka_unit_test(test_progress),
 		cmocka_unit_test(test_add),
+		cmocka_unit_test(test_degenerate),
 		cmocka_unit_test(test_split_apply),
 		cmocka_unit_test(test_heading),
 	};
