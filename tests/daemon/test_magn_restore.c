@@ -10,12 +10,14 @@
  */
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -142,6 +144,34 @@ static void no_magn_device_keeps_accel(void **state)
 	expect(f->magn, "in_magn_x_calibbias", "0\n");
 }
 
+/* The magnetometer device registered just after the accelerometer's */
+static void *magn_appears_later(void *arg)
+{
+	struct timespec ts = { .tv_nsec = 100000000 };
+
+	nanosleep(&ts, NULL);
+	fake_magn_present(arg, true);
+
+	return NULL;
+}
+
+static void restore_waits_for_magn_device(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char path[256];
+	pthread_t t;
+
+	reset(f, true);
+	write_record(f, "cal2", true, path, sizeof(path));
+	fake_magn_present(f, false);
+	assert_int_equal(pthread_create(&t, NULL, magn_appears_later, f), 0);
+	assert_int_equal(iio_restore(path, f->dev, false), 0);
+	assert_int_equal(pthread_join(t, NULL), 0);
+	expect_accel_restored(f);
+	expect(f->magn, "in_magn_x_calibbias", "-100");
+	expect(f->magn, "in_magn_z_calibscale", "1.003000");
+}
+
 /* An attribute that cannot be written fails the restore, saying which */
 static void magn_write_failure_reported(void **state)
 {
@@ -259,6 +289,7 @@ int main(void)
 		cmocka_unit_test(format1_restores_defaults),
 		cmocka_unit_test(old_driver_keeps_accel),
 		cmocka_unit_test(no_magn_device_keeps_accel),
+		cmocka_unit_test(restore_waits_for_magn_device),
 		cmocka_unit_test(magn_write_failure_reported),
 		cmocka_unit_test(magn_read_back_checked),
 		cmocka_unit_test(split_refuses_out_of_range),
