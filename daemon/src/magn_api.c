@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/un.h>
 #include <unistd.h>
 
@@ -15,6 +16,8 @@
 
 #define NT_PER_UT	1000.0
 #define MICRO		1000000.0
+/* The longest as9888_magn_feed() waits for the daemon, each way */
+#define FEED_TIMEOUT_S	1
 
 static int read_text(const char *path, char *buf, size_t size, size_t *len,
 		     char *err, size_t errlen)
@@ -109,6 +112,7 @@ int as9888_magn_feed(const char *socket_path, const double y[3],
 		     const double accel[3], char *err, size_t errlen)
 {
 	struct sockaddr_un sa = { .sun_family = AF_UNIX };
+	struct timeval limit = { .tv_sec = FEED_TIMEOUT_S };
 	char line[REQUEST_LINE_MAX], reply[512];
 	size_t have = 0;
 	ssize_t n;
@@ -126,11 +130,20 @@ int as9888_magn_feed(const char *socket_path, const double y[3],
 	}
 	strcpy(sa.sun_path, socket_path);
 	fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-	if (fd < 0 || connect(fd, (struct sockaddr *)&sa, sizeof(sa)) ||
-	    write(fd, line, (size_t)len) != len)
+	/* a HAL's sensor thread is never held up long by a busy daemon */
+	if (fd < 0 ||
+	    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &limit, sizeof(limit)) ||
+	    setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof(limit)) ||
+	    connect(fd, (struct sockaddr *)&sa, sizeof(sa)))
 		ret = -errno;
+	else if ((errno = 0, write(fd, line, (size_t)len)) != len)
+		ret = errno ? -errno : -EIO;
 	/* the reply: the daemon's output, then "exit status N" */
-	while (!ret && (n = read(fd, reply + have, sizeof(reply) - 1 - have)) > 0) {
+	while (!ret && (n = read(fd, reply + have, sizeof(reply) - 1 - have)) != 0) {
+		if (n < 0) {
+			ret = -errno;
+			break;
+		}
 		have += (size_t)n;
 		if (have == sizeof(reply) - 1) {
 			/* keep the tail, where the status line is */
@@ -146,9 +159,13 @@ int as9888_magn_feed(const char *socket_path, const double y[3],
 	}
 	reply[have] = '\0';
 	status = request_reply_status(reply, have, &have);
-	if (status != 0) {
-		snprintf(err, errlen, "the daemon refused the sample (%s%d)",
-			 status < 0 ? "no status, " : "exit status ", status);
+	if (status < 0) {
+		snprintf(err, errlen, "%s: the reply has no status line", socket_path);
+		return -EIO;
+	}
+	if (status) {
+		snprintf(err, errlen, "the daemon refused the sample (exit status %d)",
+			 status);
 		return -EIO;
 	}
 

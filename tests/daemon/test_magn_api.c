@@ -6,6 +6,7 @@
  * a sample handed to the daemon.
  */
 #include <errno.h>
+#include <signal.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -144,7 +145,7 @@ static void refuses(void **state)
 
 /*
  * A daemon stand-in on @path: takes one connection, checks its line is
- * @want, answers @reply, exits 0 when the line was right
+ * @want, answers @reply (NULL: never), exits 0 when the line was right
  */
 static pid_t serve_once(const char *path, const char *want, const char *reply)
 {
@@ -164,6 +165,8 @@ static pid_t serve_once(const char *path, const char *want, const char *reply)
 		ssize_t n = c < 0 ? -1 : read(c, line, sizeof(line) - 1);
 		bool ok = n > 0 && !strcmp(line, want);
 
+		if (!reply)	/* a stuck daemon */
+			pause();
 		if (c >= 0 && write(c, reply, strlen(reply)) < 0)
 			ok = false;
 		_exit(ok ? 0 : 1);
@@ -196,6 +199,12 @@ static void feeds_the_daemon(void **state)
 	/* no daemon */
 	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), -ENOENT);
 	assert_non_null(strstr(err, path));
+	/* a daemon that does not answer: given up on, not waited for */
+	pid = serve_once(path, line, NULL);
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), -EAGAIN);
+	kill(pid, SIGKILL);
+	waitpid(pid, &status, 0);
+	unlink(path);
 }
 
 static int setup(void **state)
