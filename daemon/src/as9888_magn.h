@@ -102,7 +102,8 @@ void as9888_magn_hal_bias(const struct as9888_magn_cal *cal, double bias[3]);
  * field mode; it never reads the magnetometer itself) and rewrites the
  * record at most every 6 hours. Call it about once a second while the
  * magnetometer is in use, not for every sample: each call is a round
- * trip to the daemon. 0, or -errno with why in @err.
+ * trip to the daemon, given up after 1 s each way (-EAGAIN). 0, or
+ * -errno with why in @err.
  */
 int as9888_magn_feed(const char *socket_path, const double y[3],
 		     const double accel[3], char *err, size_t errlen);
