@@ -2,6 +2,7 @@
 /* Tests of the AS9888 userspace simulator: clocks, bus timing, waits. */
 
 #include <errno.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -286,6 +287,56 @@ static void test_load_unit_file(void **state)
 	rmdir(tmpdir);
 }
 
+/*
+ * The magnetic world from a unit file, as the daemon's --backend sim --unit
+ * gives it: the field turns with the tumble, and every sample is the
+ * Earth's field (48 uT) off the hard iron, whatever the orientation.
+ */
+static void test_magnetic_world_unit_file(void **state)
+{
+	static const double hard[3] = { 120, -80, 40 };
+	double first[3] = { 0 }, moved = 0;
+	struct as9888_sim *sim;
+	struct as9888_unit u;
+	char err[256];
+	const char *p;
+	uint8_t b[16];
+	int k, i;
+
+	tmpdir[0] = '\0';	/* test_load_unit_file removed its directory */
+	p = write_tmp("world.unit", "earth = 48 60 2\nhard_iron = 120 -80 40\n"
+		      "tumble = 5\nmagn_noise = 0.3\nseed = 11\n");
+	assert_int_equal(as9888_sim_load_unit_file(p, &u, err, sizeof(err)),
+			 0);
+	unlink(p);
+	rmdir(tmpdir);
+	sim = new_sim(AS9888_SIM_CLOCK_VIRTUAL, &u);
+	as9888_sim_sleep_ns(sim, 100 * US);
+	as9888_sim_write_reg(sim, 2, 1);		/* INT1EN: DR */
+	as9888_sim_write_reg(sim, 7, AS9888_SLCT2_MEN_MSK);
+	for (k = 0; k < 100; k++) {
+		double m[3], r = 0;
+
+		as9888_sim_sleep_ns(sim, 100 * US);
+		as9888_sim_write_reg(sim, 8, 1);
+		assert_int_equal(as9888_sim_wait_int(sim, AS9888_PIN_INT1,
+						     20 * MSEC), 1);
+		assert_int_equal(as9888_sim_read(sim, 0x10, b, 16), 0);
+		for (i = 0; i < 3; i++) {
+			m[i] = (int16_t)(b[1 + 2 * i] | b[2 + 2 * i] << 8) *
+			       (u.eeprom[4 + i] + 128) / 256.0 * 0.3;
+			r += (m[i] - hard[i]) * (m[i] - hard[i]);
+			if (!k)
+				first[i] = m[i];
+			moved = fmax(moved, fabs(m[i] - first[i]));
+		}
+		if (fabs(sqrt(r) - 48) > 1.5)
+			fail_msg("sample %d: |m - h| = %.2f uT", k, sqrt(r));
+	}
+	assert_true(moved > 40);
+	as9888_sim_free(sim);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -300,6 +351,7 @@ int main(void)
 		cmocka_unit_test(test_real_timeout),
 		cmocka_unit_test(test_real_clock_is_monotonic),
 		cmocka_unit_test(test_load_unit_file),
+		cmocka_unit_test(test_magnetic_world_unit_file),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -435,16 +435,30 @@ static int apply_junit(struct cli_opts *o, const char *arg, char *err,
 	return 0;
 }
 
+static int apply_timeout(struct cli_opts *o, const char *arg, char *err,
+			 size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 0, 1, CLI_MAGN_TIMEOUT_MAX_S, &v))
+		return bad(err, errlen, "--timeout takes seconds 1..%d, not \"%s\"",
+			   CLI_MAGN_TIMEOUT_MAX_S, arg);
+	o->magn_timeout_s = (unsigned int)v;
+
+	return 0;
+}
+
 /* The commands an option belongs to */
 #define CMD(c)		(1u << (c))
 #define CMDS_ALL	(~0u)
 #define CMDS_CHIP	(CMD(CLI_FACTORY_TEST) | CMD(CLI_RESTORE) |		\
 			 CMD(CLI_RECALIBRATE) | CMD(CLI_ROLLBACK) |		\
-			 CMD(CLI_CHECK) | CMD(CLI_DAEMON))
+			 CMD(CLI_CHECK) | CMD(CLI_DAEMON) | CMD(CLI_MAGN_CALIBRATE))
 #define CMDS_LEVEL	(CMD(CLI_FACTORY_TEST) | CMD(CLI_RECALIBRATE) |	\
 			 CMD(CLI_CHECK))
 #define CMDS_LOCKING	(CMD(CLI_FACTORY_TEST) | CMD(CLI_RECALIBRATE) |	\
-			 CMD(CLI_ROLLBACK) | CMD(CLI_DAEMON))
+			 CMD(CLI_ROLLBACK) | CMD(CLI_DAEMON) |			\
+			 CMD(CLI_MAGN_CALIBRATE))
 
 /**
  * struct cli_option - one option: its name, whether it takes a value, the
@@ -488,6 +502,7 @@ static const struct cli_option cli_options[] = {
 	{ "sequence", true, CMD(CLI_FACTORY_TEST), apply_sequence },
 	{ "confidence", true, CMD(CLI_FACTORY_TEST), apply_confidence },
 	{ "junit", true, CMD(CLI_FACTORY_TEST), apply_junit },
+	{ "timeout", true, CMD(CLI_MAGN_CALIBRATE), apply_timeout },
 };
 
 #define CLI_N_OPTIONS	(sizeof(cli_options) / sizeof(cli_options[0]))
@@ -504,6 +519,7 @@ static const char *const commands[] = {
 	[CLI_CHECK] = "check",
 	[CLI_DAEMON] = "daemon",
 	[CLI_REQUEST] = "request",
+	[CLI_MAGN_CALIBRATE] = "magn-calibrate",
 };
 
 const char *cli_backend_name(enum cli_backend b)
@@ -539,7 +555,7 @@ static void pick_backend(struct cli_opts *o)
 		o->backend = CLI_BACKEND_IIO;
 	else if (o->command == CLI_FACTORY_TEST || o->command == CLI_RESTORE ||
 		 o->command == CLI_RECALIBRATE || o->command == CLI_ROLLBACK ||
-		 o->command == CLI_CHECK)
+		 o->command == CLI_CHECK || o->command == CLI_MAGN_CALIBRATE)
 		cli_pick_backend(o);
 	else
 		o->backend = CLI_BACKEND_NONE;
@@ -563,6 +579,8 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	o->socket_path = CLI_DEFAULT_SOCKET;
 	o->socket_mode = CLI_DEFAULT_SOCKET_MODE;
 	o->lock_timeout_s = CLI_DEFAULT_LOCK_TIMEOUT_S;
+	o->magn_timeout_s = CLI_MAGN_TIMEOUT_S;
+	o->log_fd = -1;
 	ftest_opts_default(&o->ftest);
 
 	for (i = 0; i < CLI_N_OPTIONS; i++) {
@@ -603,7 +621,7 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	if (o->command == CLI_REQUEST && optind < argc)
 		o->request = argv[optind++];
 	if (o->command == CLI_REQUEST && !o->request)
-		return bad(err, errlen, "request needs what to ask: status, check, recalibrate or rollback");
+		return bad(err, errlen, "request needs what to ask: status, check, recalibrate, rollback or magn");
 	if (optind < argc)
 		return bad(err, errlen, "unexpected argument \"%s\"", argv[optind]);
 	if (o->ftest.confidence_1e4 && !o->ftest.permissible_error_q16)

@@ -19,6 +19,9 @@
 #define CLI_DEFAULT_SOCKET_MODE	0660
 #define CLI_DEFAULT_I2C_ADDRESS	0x0c
 #define CLI_DEFAULT_LOCK_TIMEOUT_S	30
+/* magn-calibrate --timeout: default and largest, seconds */
+#define CLI_MAGN_TIMEOUT_S	120
+#define CLI_MAGN_TIMEOUT_MAX_S	3600
 
 /*
  * How the chip is reached. Without --backend, cli_parse() picks one
@@ -47,6 +50,7 @@ enum cli_command {
 	CLI_CHECK,
 	CLI_DAEMON,
 	CLI_REQUEST,
+	CLI_MAGN_CALIBRATE,
 };
 
 /**
@@ -72,6 +76,11 @@ enum cli_command {
  * @backend_auto:	@backend was picked, not given by --backend
  * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
  * @junit_path:		factory-test: also write the report as JUnit XML there
+ * @magn_timeout_s:	magn-calibrate: the session's longest run
+ * @magn_feed:		the daemon's magn-feed request: its sample
+ *			(REQUEST_FEED_VALUES), NULL otherwise
+ * @log_fd:		in a request the daemon runs: its log (its stderr
+ *			before the reply took it), else -1
  * @ftest:		factory-test options
  */
 struct cli_opts {
@@ -96,6 +105,9 @@ struct cli_opts {
 	bool backend_auto;
 	char backend_why[CLI_BACKEND_WHY_LEN];
 	const char *junit_path;
+	unsigned int magn_timeout_s;
+	const double *magn_feed;
+	int log_fd;
 	struct ftest_opts ftest;
 };
 

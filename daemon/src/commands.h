@@ -13,5 +13,8 @@ int cmd_rollback(const struct cli_opts *o);
 int cmd_check(const struct cli_opts *o);
 int cmd_daemon(const struct cli_opts *o);
 int cmd_request(const struct cli_opts *o);
+int cmd_magn_show(const struct cli_opts *o);
+int cmd_magn_calibrate(const struct cli_opts *o);
+int cmd_magn_feed(const struct cli_opts *o);
 
 #endif

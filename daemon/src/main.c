@@ -5,6 +5,7 @@
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "commands.h"
@@ -27,9 +28,16 @@ static const char usage_text[] =
 "  check          compare a level reading with the record's prediction and\n"
 "                 say whether a recalibration is advisable\n"
 "  rollback       bring back the calibration before the last recalibrate\n"
+"                 or magn-calibrate\n"
+"  magn-calibrate learn the magnetometer's hard and soft iron while the\n"
+"                 device is turned through every direction; stored in the\n"
+"                 record (the old one kept for rollback), applied to the\n"
+"                 driver\n"
 "  daemon         stay running: apply the record whenever the AS9888 IIO\n"
 "                 device appears, and serve requests on a Unix socket\n"
-"  request WHAT   ask the daemon: status, check, recalibrate, rollback\n"
+"  request WHAT   ask the daemon: status, check, recalibrate, rollback,\n"
+"                 magn (the magnetometer's calibration), \"magn-feed Y1 Y2 Y3\n"
+"                 A1 A2 A3\" (a consumer's sample for the field mode)\n"
 "  help           this text\n"
 "\n"
 "Common options:\n"
@@ -94,6 +102,9 @@ static const char usage_text[] =
 "  --socket-mode MODE   its permissions, who may send requests (default 0660)\n"
 "  --socket-group NAME  its group\n"
 "\n"
+"magn-calibrate options (and the common ones):\n"
+"  --timeout S          give up after S seconds, 1..3600 (default 120)\n"
+"\n"
 "show options:\n"
 "  --temperature T      degrees Celsius, -30..85 (default: the level test's)\n"
 "\n"
@@ -119,8 +130,13 @@ int main(int argc, char **argv)
 
 	switch (o.command) {
 	case CLI_HELP:
-		fputs(usage_text, stdout);
-		return EXIT_SUCCESS;
+		/*
+		 * In one write: the text is longer than stdio's pipe buffer,
+		 * and a reader that stops at the line it wants ("grep -q")
+		 * must not kill us with SIGPIPE on a second write
+		 */
+		return write(STDOUT_FILENO, usage_text, sizeof(usage_text) - 1) ==
+		       (ssize_t)sizeof(usage_text) - 1 ? EXIT_SUCCESS : EXIT_FAILURE;
 	case CLI_FACTORY_TEST:
 		return cmd_factory_test(&o);
 	case CLI_RESTORE:
@@ -137,6 +153,8 @@ int main(int argc, char **argv)
 		return cmd_daemon(&o);
 	case CLI_REQUEST:
 		return cmd_request(&o);
+	case CLI_MAGN_CALIBRATE:
+		return cmd_magn_calibrate(&o);
 	}
 
 	return EXIT_USAGE;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 /* The daemon's request line and the status line of its reply. */
 #include <errno.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -13,11 +14,15 @@ static const struct {
 	const char *name;
 	bool changes_state;
 	bool exclusive;
+	bool quiet;
 } kinds[] = {
-	[REQUEST_STATUS] = { "status", false, false },
-	[REQUEST_CHECK] = { "check", false, true },
-	[REQUEST_RECALIBRATE] = { "recalibrate", true, true },
-	[REQUEST_ROLLBACK] = { "rollback", true, true },
+	[REQUEST_STATUS] = { "status", false, false, false },
+	[REQUEST_CHECK] = { "check", false, true, false },
+	[REQUEST_RECALIBRATE] = { "recalibrate", true, true, false },
+	[REQUEST_ROLLBACK] = { "rollback", true, true, false },
+	[REQUEST_MAGN] = { "magn", false, false, false },
+	/* its rare record rewrite is logged by the field mode itself */
+	[REQUEST_MAGN_FEED] = { "magn-feed", false, false, true },
 };
 
 #define KINDS	(sizeof(kinds) / sizeof(kinds[0]))
@@ -35,6 +40,43 @@ bool request_changes_state(enum request_kind kind)
 bool request_exclusive(enum request_kind kind)
 {
 	return kinds[kind].exclusive;
+}
+
+bool request_quiet(enum request_kind kind)
+{
+	return kinds[kind].quiet;
+}
+
+/*
+ * magn-feed's values after the word: REQUEST_FEED_VALUES decimal numbers
+ * within +-100000, each after one space, nothing else. 0 or -EINVAL.
+ */
+static int parse_feed(const char *s, size_t len, double *out)
+{
+	char text[REQUEST_LINE_MAX], *p, *end;
+	int i;
+
+	if (len >= sizeof(text))
+		return -EINVAL;
+	memcpy(text, s, len);
+	text[len] = '\0';
+	p = text;
+	for (i = 0; i < REQUEST_FEED_VALUES; i++) {
+		if (*p != ' ' || p[1] == ' ' || !p[1])
+			return -EINVAL;
+		p++;
+		end = p + strspn(p, "-0123456789.");
+		if (end == p || (*end && *end != ' '))
+			return -EINVAL;
+		errno = 0;
+		out[i] = strtod(p, &end);
+		if (errno || (*end && *end != ' ') || out[i] != out[i] ||
+		    out[i] > 100000 || out[i] < -100000)
+			return -EINVAL;
+		p = end;
+	}
+
+	return *p ? -EINVAL : 0;
 }
 
 /* @len bytes of @s as printable text, at most QUOTED_MAX - 1 of them */
@@ -57,6 +99,17 @@ int request_parse(const char *line, size_t len, struct request *r, char *err,
 	char quoted[QUOTED_MAX];
 	unsigned int i;
 
+	if (word == strlen(kinds[REQUEST_MAGN_FEED].name) &&
+	    !memcmp(line, kinds[REQUEST_MAGN_FEED].name, word)) {
+		memset(r, 0, sizeof(*r));
+		r->kind = REQUEST_MAGN_FEED;
+		if (!sp || parse_feed(sp, len - word, r->feed)) {
+			snprintf(err, errlen, "magn-feed takes %d numbers: the driver's field in uT, the accelerometer's reading",
+				 REQUEST_FEED_VALUES);
+			return -EINVAL;
+		}
+		return 0;
+	}
 	if (sp && (len - word != strlen(JSON_SUFFIX) ||
 		   memcmp(sp, JSON_SUFFIX, len - word))) {
 		printable(sp + 1, len - word - 1, quoted);
@@ -69,7 +122,7 @@ int request_parse(const char *line, size_t len, struct request *r, char *err,
 			break;
 	if (i == KINDS) {
 		printable(line, word, quoted);
-		snprintf(err, errlen, "unknown request \"%s\": expected one of status, check, recalibrate, rollback",
+		snprintf(err, errlen, "unknown request \"%s\": expected one of status, check, recalibrate, rollback, magn, magn-feed",
 			 quoted);
 		return -EINVAL;
 	}

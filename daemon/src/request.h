@@ -21,11 +21,21 @@ enum request_kind {
 	REQUEST_CHECK,
 	REQUEST_RECALIBRATE,
 	REQUEST_ROLLBACK,
+	REQUEST_MAGN,
+	REQUEST_MAGN_FEED,
 };
+
+/*
+ * "magn-feed Y1 Y2 Y3 A1 A2 A3": a magnetometer consumer's sample for the
+ * field mode (magn_field.h): the driver's output in uT (up to 3 decimals)
+ * and the accelerometer's raw reading at the same time (integers)
+ */
+#define REQUEST_FEED_VALUES	6
 
 struct request {
 	enum request_kind kind;
 	bool json;
+	double feed[REQUEST_FEED_VALUES];
 };
 
 const char *request_name(enum request_kind kind);
@@ -35,6 +45,8 @@ bool request_changes_state(enum request_kind kind);
 
 /* Uses the chip or writes the record: one such request at a time */
 bool request_exclusive(enum request_kind kind);
+/* Frequent and routine (magn-feed): not logged when asked and done */
+bool request_quiet(enum request_kind kind);
 
 /*
  * Parse the request line @line of @len bytes (without its newline; any

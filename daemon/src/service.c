@@ -4,8 +4,8 @@
  * until something happens (no periodic wake-up):
  * - a kernel uevent says an AS9888 IIO device appeared (boot, module
  *   reload, rebind): the record is applied to it;
- * - a client on the Unix socket asks for status, check, recalibrate or
- *   rollback (request.h): the request runs in a child process whose output
+ * - a client on the Unix socket asks for status, check, recalibrate,
+ *   rollback or magn (the magnetometer's calibration; request.h): the request runs in a child process whose output
  *   goes to the client;
  * - SIGTERM, SIGINT or SIGHUP: it stops (see stop()).
  *
@@ -192,6 +192,8 @@ static int (*const request_fn[])(const struct cli_opts *o) = {
 	[REQUEST_CHECK] = cmd_check,
 	[REQUEST_RECALIBRATE] = cmd_recalibrate,
 	[REQUEST_ROLLBACK] = cmd_rollback,
+	[REQUEST_MAGN] = cmd_magn_show,
+	[REQUEST_MAGN_FEED] = cmd_magn_feed,
 };
 
 static int run_request(int fd, struct service *s, void *arg)
@@ -200,6 +202,9 @@ static int run_request(int fd, struct service *s, void *arg)
 	struct cli_opts o = *s->o;
 
 	o.json = c->req.json;
+	o.magn_feed = c->req.feed;
+	/* the daemon's log, which the reply takes stderr from */
+	o.log_fd = dup(STDERR_FILENO);
 	return request_reply_run(fd, request_fn[c->req.kind], &o, c->req.json);
 }
 
@@ -240,9 +245,10 @@ static void client_start(struct service *s, struct client *c)
 	const char *name = request_name(c->req.kind);
 	pid_t pid;
 
-	log_msg("%s requested%s%s", name,
-		request_changes_state(c->req.kind) ? " by " : "",
-		request_changes_state(c->req.kind) ? c->peer : "");
+	if (!request_quiet(c->req.kind))
+		log_msg("%s requested%s%s", name,
+			request_changes_state(c->req.kind) ? " by " : "",
+			request_changes_state(c->req.kind) ? c->peer : "");
 	pid = spawn(c->fd, run_request, s, c);
 	if (pid < 0) {
 		log_msg("%s not run: cannot fork: %s", name, strerror((int)-pid));
@@ -472,7 +478,9 @@ static void client_done(struct service *s, struct client *c, int wstatus)
 	if (!WIFEXITED(wstatus))
 		request_reply_status_now(c->fd, "as9888-calibd: the request was killed\n",
 					 status);
-	log_msg("%s done: exit status %d", request_name(c->req.kind), status);
+	if (!request_quiet(c->req.kind) || status)
+		log_msg("%s done: exit status %d", request_name(c->req.kind),
+			status);
 	if (request_exclusive(c->req.kind))
 		s->chip_busy = false;
 	client_close(c);

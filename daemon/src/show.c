@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "json.h"
+#include "magn_show.h"
 #include "show.h"
 
 static const char *const axis_key[AS9888_AXES] = { "x", "y", "z" };
@@ -64,6 +65,7 @@ void show_print_text(FILE *out, const struct calib_record *rec,
 			s->kote_milli[axis] / 1000.0);
 	for (w = s->warnings; w; w &= w - 1)
 		fprintf(out, "warning: %s\n", as9888_ee_warning_str(w & -w));
+	magn_show_text(out, rec);
 }
 
 void show_print_json(FILE *out, const struct calib_record *rec,
@@ -78,11 +80,16 @@ void show_print_json(FILE *out, const struct calib_record *rec,
 			s->ot_q16[axis] / 65536.0);
 	fprintf(out, "\n  },\n  \"record\": {\"chip\": \"%016llx\", \"dac\": [%u, %u, %u], "
 		"\"level_mean\": [%.6f, %.6f, %.6f], \"t_level\": %.3f, "
-		"\"gravity\": [%d, %d, %d], \"samples\": %u, \"lpf\": %s}\n}\n",
+		"\"gravity\": [%d, %d, %d], \"samples\": %u, \"lpf\": %s}",
 		(unsigned long long)record_fingerprint(rec->eeprom),
 		rec->dac[0], rec->dac[1], rec->dac[2],
 		rec->level_mean_q16[0] / 65536.0, rec->level_mean_q16[1] / 65536.0,
 		rec->level_mean_q16[2] / 65536.0, rec->t_level_mdegc / 1000.0,
 		rec->gravity[0], rec->gravity[1], rec->gravity[2], rec->samples,
 		rec->lpf ? "true" : "false");
+	if (rec->magn.present) {
+		fputs(",\n  \"magnetometer\": ", out);
+		magn_show_json(out, rec, 2);
+	}
+	fputs("\n}\n", out);
 }

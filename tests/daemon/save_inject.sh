@@ -84,15 +84,17 @@ if [ $hits -lt 10 ]; then
 fi
 
 # The record and its previous one as a pair (daemon/src/record_pair.h):
-# rollback, recalibrate and factory-test are each interrupted at every
+# rollback, recalibrate, factory-test and magn-calibrate are each
+# interrupted at every
 # system call that touches the record's files (a SIGKILL, standing in for
-# a power cut), or see EIO at every one of them (rollback and recalibrate),
+# a power cut), or see EIO at every one of them (rollback, recalibrate,
+# magn-calibrate),
 # ENOSPC at every write, fsync and close and EROFS at every open, rename,
 # unlink and fchmod. Then one rollback follows (it finishes or undoes what
 # was interrupted, then swaps), and the pair must be what the old pair or
 # the new pair gives after that swap: no record is ever lost or
 # duplicated, and no temporary or journal file stays. And the exit status
-# of rollback and recalibrate tells the truth (issue 25, point 3): 0 when
+# of rollback, recalibrate and magn-calibrate tells the truth (issue 25, point 3): 0 when
 # the new pair stands, not 0 when the old one does.
 pair_runs=0
 status_lies=0
@@ -109,8 +111,14 @@ reset_pair() {
 	cp "$work/P" "$rec.previous"
 	rm -f "$rec.new" "$rec.previous.swap" "$rec.previous.swap.new"
 }
-# is_new FILE: a valid record from the interrupted command (12 samples)
-is_new() { grep -q '^samples = 12$' "$1" && "$calibd" show --record "$1" >/dev/null 2>&1; }
+# is_new FILE: a valid record from the interrupted command (12 samples;
+# magn-calibrate's: with a magnetometer calibration)
+is_new() {
+	{ grep -q '^samples = 12$' "$1" || grep -q '^magn_hard_iron = ' "$1"; } &&
+		"$calibd" show --record "$1" >/dev/null 2>&1
+}
+# magn-calibrate's board: turned through every direction by the model
+printf 'earth = 48 60 3\nhard_iron = 120 -80 45\ntumble = 4\n' >"$work/board.unit"
 same() { cmp -s "$1" "$2"; }
 # pair_state CMD: which pair CMD left ("old" or "new"), seen after one
 # rollback; nothing (status 1) when it is neither
@@ -120,7 +128,7 @@ pair_state() {
 	rollback)	# old (R,P) -> (P,R); new (P,R) -> (R,P)
 		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
 		same "$rec" "$work/R" && same "$rec.previous" "$work/P" && new=yes ;;
-	recalibrate)	# old (R,P) -> (P,R); new (N,R) -> (R,N)
+	recalibrate | magn-calibrate)	# old (R,P) -> (P,R); new (N,R) -> (R,N)
 		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
 		same "$rec" "$work/R" && is_new "$rec.previous" && new=yes ;;
 	factory-test)	# old (R,P) -> (P,R); new (N,P) -> (P,N)
@@ -138,9 +146,13 @@ calls_of() {
 		--backend sim --sim-clock virtual --record "$rec" >/dev/null 2>&1
 	awk '{ sub(/\(.*/, "", $2); if ($2 !~ /^[a-z_0-9]+$/) next; print $2, ++k[$2] }' "$work/trace"
 }
-for cmd in rollback recalibrate factory-test; do
+for cmd in rollback recalibrate factory-test magn-calibrate; do
 	args=("$cmd")
-	[ "$cmd" = rollback ] || args+=(--samples 12)
+	case $cmd in
+	rollback) ;;
+	magn-calibrate) args+=(--unit "$work/board.unit") ;;
+	*) args+=(--samples 12) ;;
+	esac
 	while read -r call k; do
 		for action in kill EIO ENOSPC EROFS; do
 			case $action:$call in

@@ -2,8 +2,8 @@
 /*
  * libFuzzer target: the daemon's request line (any bytes a client sends)
  * and the status line the client looks for in a reply. A request line
- * accepted names a request and formats back to itself; a refusal's message
- * is printable text.
+ * accepted names a request and formats back to itself (magn-feed: its six
+ * numbers are in range); a refusal's message is printable text.
  */
 #include <stdio.h>
 
@@ -21,6 +21,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	if (request_parse(line, size, &r, err, sizeof(err))) {
 		for (i = 0; err[i]; i++)
 			if ((unsigned char)err[i] < 0x20 || err[i] == 0x7f)
+				abort();
+	} else if (r.kind == REQUEST_MAGN_FEED) {
+		/* six numbers in range after the word, nothing else */
+		if (r.json || size < 10 || memcmp(line, "magn-feed ", 10))
+			abort();
+		for (i = 0; i < REQUEST_FEED_VALUES; i++)
+			if (!(r.feed[i] >= -100000 && r.feed[i] <= 100000))
 				abort();
 	} else {
 		snprintf(again, sizeof(again), "%s%s", request_name(r.kind),

@@ -1,0 +1,251 @@
+// SPDX-License-Identifier: GPL-2.0
+/* The daemon's magnetometer field mode (magn_field.h). */
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/file.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "commands.h"
+#include "iio.h"
+#include "magcal.h"
+#include "magn_cal.h"
+#include "magn_field.h"
+#include "magn_iio.h"
+#include "magn_session.h"
+#include "request.h"
+#include "session.h"
+
+#define MICRO		1000000.0
+/* "m1 m2 m3 a1 a2 a3\n" with %.3f fields */
+#define LINE_LEN	160
+#define FILE_MAX	((MAGN_FIELD_KEEP + 2) * LINE_LEN)
+
+bool magn_field_should_replace(const struct calib_magn *cur,
+			       const struct calib_magn *next, int64_t now)
+{
+	int i, j;
+
+	if (!cur->present)
+		return true;
+	if (now - cur->learned < MAGN_FIELD_MIN_AGE_S)
+		return false;
+	for (i = 0; i < AS9888_AXES; i++) {
+		if (abs(next->hard_iron_nt[i] - cur->hard_iron_nt[i]) >=
+		    MAGN_FIELD_BIAS_STEP_NT)
+			return true;
+		for (j = 0; j < AS9888_AXES; j++)
+			if (abs(next->soft_iron_micro[i][j] -
+				cur->soft_iron_micro[i][j]) >=
+			    MAGN_FIELD_W_STEP_MICRO)
+				return true;
+	}
+
+	return false;
+}
+
+void magn_field_uncorrect(const double y[AS9888_AXES],
+			  const int32_t bias[AS9888_AXES],
+			  const int32_t scale_micro[AS9888_AXES],
+			  const double s[AS9888_AXES], double m[AS9888_AXES])
+{
+	int i;
+
+	/* y = D (m + c s): magn_cal.h */
+	for (i = 0; i < AS9888_AXES; i++)
+		m[i] = y[i] / (scale_micro[i] / MICRO) - bias[i] * s[i];
+}
+
+/* What the driver's attributes hold now (defaults without a driver or them) */
+static void driver_state(const struct calib_record *rec,
+			 struct magn_driver_cal *d, char *accel, size_t size)
+{
+	char magn[IIO_PATH_MAX], err[IIO_ERR_LEN];
+
+	magn_driver_identity(d);
+	accel[0] = '\0';
+	if (iio_find_device(NULL, accel, size)) {
+		accel[0] = '\0';
+		return;
+	}
+	if (!iio_find_magn(accel, magn, sizeof(magn), NULL, 0) &&
+	    magn_iio_has_calibration(magn) &&
+	    magn_iio_read(magn, d, err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: magn-feed: %s\n", err);
+		magn_driver_identity(d);
+	}
+}
+
+static void samples_path(const struct cli_opts *o, char *path, size_t size)
+{
+	const char *dir = getenv("RUNTIME_DIRECTORY");
+
+	if (dir && *dir && !strchr(dir, ':'))
+		snprintf(path, size, "%s/%s", dir, MAGN_FIELD_SAMPLES_NAME);
+	else
+		snprintf(path, size, "%s.%s", o->socket_path,
+			 MAGN_FIELD_SAMPLES_NAME);
+}
+
+/*
+ * Append @m, @a to the samples file (locked), keep the last
+ * MAGN_FIELD_KEEP, and feed all of them to @fit when MAGN_FIELD_FIT_EVERY
+ * arrived since the last fit: 1 then, 0 when not yet, -errno
+ */
+static int store_sample(const char *path, const double m[3], const double a[3],
+			struct magcal_session *fit, char *err, size_t errlen)
+{
+	char *text = malloc(FILE_MAX + 1);
+	char *lines[MAGN_FIELD_KEEP + 1], *p, *nl;
+	unsigned int n = 0, fresh = 0, first, i;
+	int fd, ret = 0;
+	ssize_t len;
+	FILE *out;
+
+	if (!text) {
+		snprintf(err, errlen, "out of memory");
+		return -ENOMEM;
+	}
+	fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
+	if (fd < 0 || flock(fd, LOCK_EX)) {
+		ret = -errno;
+		snprintf(err, errlen, "%.300s: %s", path, strerror(-ret));
+		if (fd >= 0)
+			close(fd);
+		free(text);
+		return ret;
+	}
+	len = read(fd, text, FILE_MAX);
+	if (len < 0)
+		len = 0;
+	text[len] = '\0';
+	/* the first line counts the samples since the last fit */
+	p = text;
+	if (*p == '#') {
+		fresh = (unsigned int)strtoul(p + 1, NULL, 10);
+		p = strchr(p, '\n');
+		p = p ? p + 1 : text + len;
+	}
+	for (; *p && (nl = strchr(p, '\n')); p = nl + 1) {
+		*nl = '\0';
+		if (n == MAGN_FIELD_KEEP + 1) {
+			memmove(lines, lines + 1, sizeof(lines[0]) * MAGN_FIELD_KEEP);
+			n--;
+		}
+		lines[n++] = p;
+	}
+	fresh++;
+	first = n >= MAGN_FIELD_KEEP ? n - MAGN_FIELD_KEEP + 1 : 0;
+	if (fresh >= MAGN_FIELD_FIT_EVERY && fit) {
+		for (i = first; i < n; i++) {
+			double v[6];
+
+			if (sscanf(lines[i], "%lf %lf %lf %lf %lf %lf", &v[0], &v[1],
+				   &v[2], &v[3], &v[4], &v[5]) == 6)
+				magcal_add(fit, v, v + 3);
+		}
+		magcal_add(fit, m, a);
+		fresh = 0;
+		ret = 1;
+	}
+	out = fdopen(fd, "w");
+	if (!out) {
+		close(fd);
+		free(text);
+		return ret;
+	}
+	if (ftruncate(fd, 0) == 0 && lseek(fd, 0, SEEK_SET) == 0) {
+		fprintf(out, "#%u\n", fresh);
+		for (i = first; i < n; i++)
+			fprintf(out, "%s\n", lines[i]);
+		fprintf(out, "%.3f %.3f %.3f %.0f %.0f %.0f\n", m[0], m[1], m[2],
+			a[0], a[1], a[2]);
+	}
+	fclose(out);	/* and the lock */
+	free(text);
+
+	return ret;
+}
+
+/* A good fit that changes the record enough: stored and applied */
+static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
+		       const struct magcal_result *r, const char *accel)
+{
+	char err[SESSION_ERR_LEN];
+	struct calib_magn next;
+	int64_t now = (int64_t)time(NULL);
+	int lock, ret;
+
+	if (r->status != MAGCAL_OK ||
+	    magn_session_to_record(r, now, &next, err, sizeof(err)) ||
+	    !magn_field_should_replace(&rec->magn, &next, now))
+		return 0;
+	/* someone else changing the record now: the next fit tries again */
+	lock = session_lock(o->record_path, 0);
+	if (lock < 0)
+		return 0;
+	if (session_load_record(o->record_path, rec) ||
+	    !magn_field_should_replace(&rec->magn, &next, now)) {
+		close(lock);
+		return 0;
+	}
+	rec->magn = next;
+	ret = session_save_record(o->record_path, rec, true, err, sizeof(err));
+	close(lock);
+	if (ret) {
+		fprintf(stderr, "as9888-calibd: field mode: cannot store the magnetometer calibration: %s\n",
+			err);
+		return ret;
+	}
+	/* the daemon's log (the journal), and the client */
+	dprintf(o->log_fd >= 0 ? o->log_fd : STDERR_FILENO,
+		"as9888-calibd: field mode: magnetometer calibration refined (hard iron %.3f %.3f %.3f uT, residual %.3f uT) and stored in %s\n",
+		next.hard_iron_nt[0] / 1000.0, next.hard_iron_nt[1] / 1000.0,
+		next.hard_iron_nt[2] / 1000.0, next.residual_nt / 1000.0,
+		o->record_path);
+	printf("stored in %s\n", o->record_path);
+
+	return *accel ? iio_apply_record(accel, rec) : 0;
+}
+
+int cmd_magn_feed(const struct cli_opts *o)
+{
+	char path[PATH_MAX], accel[IIO_PATH_MAX], err[SESSION_ERR_LEN];
+	double s[AS9888_AXES], m[AS9888_AXES];
+	struct magcal_session *fit;
+	struct magn_driver_cal d;
+	struct magcal_result r;
+	struct calib_record rec;
+	int ret;
+
+	if (!o->magn_feed)
+		return EXIT_FAILURE;
+	if (session_load_record(o->record_path, &rec))
+		return EXIT_FAILURE;
+	driver_state(&rec, &d, accel, sizeof(accel));
+	magn_scale_ut(rec.eeprom, s);
+	magn_field_uncorrect(o->magn_feed, d.calibbias, d.calibscale_micro, s, m);
+	fit = magcal_new(NULL);
+	if (!fit) {
+		fprintf(stderr, "as9888-calibd: magn-feed: out of memory\n");
+		return EXIT_FAILURE;
+	}
+	samples_path(o, path, sizeof(path));
+	ret = store_sample(path, m, o->magn_feed + AS9888_AXES, fit, err,
+			   sizeof(err));
+	if (ret < 0)
+		fprintf(stderr, "as9888-calibd: magn-feed: %s\n", err);
+	if (ret == 1 && !magcal_solve(fit, &r)) {
+		printf("fit: %s, coverage %.0f%%, residual %.3f uT\n",
+		       magcal_status_str(r.status), 100 * r.coverage,
+		       r.residual_ut);
+		ret = maybe_store(o, &rec, &r, accel);
+	}
+	magcal_free(fit);
+
+	return ret < 0 ? EXIT_FAILURE : EXIT_SUCCESS;
+}

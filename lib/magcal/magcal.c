@@ -1,0 +1,816 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * magcal: the ellipsoid fit of magcal.h.
+ *
+ * Method (docs/DECISIONS.md, "Magnetometer calibration: the fit"):
+ *  1. A linear sphere fit (|m|^2 = 2 b.m + k, least squares) gives a centre
+ *     c0 and a radius F0; the samples are normalised to (m - c0) / F0.
+ *  2. Levenberg-Marquardt on the geometric residual |L (m' - b')| - 1 over
+ *     nine parameters (b', the symmetric L), with three plus three prior
+ *     rows that pull L toward a multiple of the identity: weak where the
+ *     motion observed a direction, decisive where it did not (partial
+ *     coverage), so an unobserved axis stays a sphere's instead of
+ *     running away.
+ *  0. Robust start: a RANSAC sphere (exact spheres through 4 samples, the
+ *     one with the most samples within 15 % of its radius wins: a soft
+ *     iron of +-10 % stays inside, a passing magnet of a few uT and more
+ *     falls outside; only radii near a plausible Earth field compete, or a
+ *     huge sphere would hold everything) chooses the samples of the first
+ *     fit.
+ *  3. Robustness: rounds that keep every sample whose residual is within
+ *     max(outlier_ut, 4 robust sigma) of the last fit, until the set is
+ *     stable.
+ *  4. W = L / det(L)^(1/3), b = c0 + F0 b', F = F0 / det(L)^(1/3).
+ */
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "magcal.h"
+
+#define NPARAM			9	/* b'(3), L00 L11 L22 L01 L02 L12 */
+#define LM_MAX_ITER		60
+#define LM_TOL			1e-12
+#define RANSAC_TRIES		80
+#define RANSAC_TOL		0.15	/* of the radius */
+/* candidate radii: the plausible field, widened by the soft iron */
+#define RANSAC_RADIUS_SLACK	0.7
+#define ROBUST_ROUNDS		8
+#define ROBUST_SIGMAS		4.0
+#define MAD_TO_SIGMA		1.4826
+/* prior: expected size of the anisotropic part of L (row weight) */
+#define PRIOR_WEIGHT		0.1
+/* coverage: cube faces split in 3 x 3 equal-angle cells */
+#define FACE_SPLIT		0.2679491924311228	/* tan(15 deg) */
+#define COVER_BINS		54
+#define DEG_PER_RAD		(180.0 / M_PI)
+
+struct sample {
+	double m[3];
+	double g[3];
+	bool has_g;
+};
+
+struct magcal_session {
+	struct magcal_config cfg;
+	unsigned int n;		/* samples kept */
+	unsigned int next;	/* the oldest, to be replaced when full */
+	struct sample s[MAGCAL_MAX_SAMPLES];
+};
+
+/* A fit in progress: normalisation and the nine parameters */
+struct fit {
+	double c0[3];
+	double f0;
+	double x[NPARAM];
+};
+
+void magcal_config_default(struct magcal_config *cfg)
+{
+	cfg->max_samples = MAGCAL_MAX_SAMPLES;
+	cfg->min_samples = 40;
+	cfg->min_coverage = 0.4;
+	cfg->min_separation_ut = 2.0;
+	cfg->field_min_ut = 20.0;
+	cfg->field_max_ut = 70.0;
+	cfg->max_residual_ut = 1.5;
+	cfg->outlier_ut = 2.0;
+	cfg->max_uncertainty_deg = 0.6;
+}
+
+static bool config_ok(const struct magcal_config *c)
+{
+	return c->max_samples >= 1 && c->max_samples <= MAGCAL_MAX_SAMPLES &&
+	       c->min_coverage >= 0 && c->min_coverage <= 1 &&
+	       c->min_separation_ut >= 0 && c->field_min_ut >= 0 &&
+	       c->field_max_ut > c->field_min_ut && c->max_residual_ut > 0 &&
+	       c->outlier_ut > 0 && c->max_uncertainty_deg > 0;
+}
+
+struct magcal_session *magcal_new(const struct magcal_config *cfg)
+{
+	struct magcal_session *s;
+	struct magcal_config def;
+
+	if (!cfg) {
+		magcal_config_default(&def);
+		cfg = &def;
+	}
+	if (!config_ok(cfg))
+		return NULL;
+	s = calloc(1, sizeof(*s));
+	if (s)
+		s->cfg = *cfg;
+	return s;
+}
+
+void magcal_free(struct magcal_session *s)
+{
+	free(s);
+}
+
+void magcal_reset(struct magcal_session *s)
+{
+	s->n = 0;
+	s->next = 0;
+}
+
+unsigned int magcal_count(const struct magcal_session *s)
+{
+	return s->n;
+}
+
+static double dist3(const double a[3], const double b[3])
+{
+	return sqrt((a[0] - b[0]) * (a[0] - b[0]) +
+		    (a[1] - b[1]) * (a[1] - b[1]) +
+		    (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static double norm3(const double a[3])
+{
+	return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
+
+static bool finite3(const double a[3])
+{
+	return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]);
+}
+
+int magcal_add(struct magcal_session *s, const double m_ut[3],
+	       const double *gravity)
+{
+	struct sample *dst;
+	unsigned int i;
+
+	if (!s || !m_ut || !finite3(m_ut) || (gravity && !finite3(gravity)))
+		return -EINVAL;
+	for (i = 0; i < s->n; i++)
+		if (dist3(s->s[i].m, m_ut) < s->cfg.min_separation_ut)
+			return 0;
+	if (s->n < s->cfg.max_samples) {
+		dst = &s->s[s->n++];
+	} else {
+		dst = &s->s[s->next];
+		s->next = (s->next + 1) % s->cfg.max_samples;
+	}
+	memcpy(dst->m, m_ut, sizeof(dst->m));
+	dst->has_g = gravity != NULL;
+	if (gravity)
+		memcpy(dst->g, gravity, sizeof(dst->g));
+	return 1;
+}
+
+/* ---- linear algebra ---- */
+
+/* Solve a x = b (n <= NPARAM) by Gaussian elimination; false if singular */
+static bool solve(int n, double a[NPARAM][NPARAM], double b[NPARAM],
+		  double x[NPARAM])
+{
+	int i, j, k, p;
+
+	for (k = 0; k < n; k++) {
+		p = k;
+		for (i = k + 1; i < n; i++)
+			if (fabs(a[i][k]) > fabs(a[p][k]))
+				p = i;
+		if (fabs(a[p][k]) < 1e-300)
+			return false;
+		for (j = 0; j < n; j++) {
+			double t = a[k][j];
+
+			a[k][j] = a[p][j];
+			a[p][j] = t;
+		}
+		{
+			double t = b[k];
+
+			b[k] = b[p];
+			b[p] = t;
+		}
+		for (i = k + 1; i < n; i++) {
+			double f = a[i][k] / a[k][k];
+
+			for (j = k; j < n; j++)
+				a[i][j] -= f * a[k][j];
+			b[i] -= f * b[k];
+		}
+	}
+	for (i = n - 1; i >= 0; i--) {
+		double t = b[i];
+
+		for (j = i + 1; j < n; j++)
+			t -= a[i][j] * x[j];
+		x[i] = t / a[i][i];
+	}
+	for (i = 0; i < n; i++)
+		if (!isfinite(x[i]))
+			return false;
+	return true;
+}
+
+static double det3(const double m[3][3])
+{
+	return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+	       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+	       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+/* ---- the sphere fit (start values, progress) ---- */
+
+/* |m|^2 = 2 b.m + k over the flagged samples; false if degenerate */
+static bool sphere_fit(const struct magcal_session *s, const bool *use,
+		       double c[3], double *r)
+{
+	double a[NPARAM][NPARAM] = { { 0 } }, rhs[NPARAM] = { 0 };
+	double x[NPARAM], r2;
+	unsigned int i, cnt = 0;
+	int j, k;
+
+	for (i = 0; i < s->n; i++) {
+		const double *m = s->s[i].m;
+		double row[4] = { 2 * m[0], 2 * m[1], 2 * m[2], 1 };
+		double y = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+
+		if (use && !use[i])
+			continue;
+		cnt++;
+		for (j = 0; j < 4; j++) {
+			for (k = 0; k < 4; k++)
+				a[j][k] += row[j] * row[k];
+			rhs[j] += row[j] * y;
+		}
+	}
+	if (cnt < 4 || !solve(4, a, rhs, x))
+		return false;
+	r2 = x[3] + x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+	if (!(r2 > 0))
+		return false;
+	memcpy(c, x, 3 * sizeof(double));
+	*r = sqrt(r2);
+	return true;
+}
+
+/* ---- coverage ---- */
+
+/* The cell (0..COVER_BINS-1) of a direction: cube face, then 3 x 3 */
+static int cover_bin(const double v[3])
+{
+	double a[3] = { fabs(v[0]), fabs(v[1]), fabs(v[2]) };
+	int face = a[0] >= a[1] && a[0] >= a[2] ? 0 : a[1] >= a[2] ? 1 : 2;
+	double u = v[(face + 1) % 3] / a[face];
+	double w = v[(face + 2) % 3] / a[face];
+	int iu = u < -FACE_SPLIT ? 0 : u > FACE_SPLIT ? 2 : 1;
+	int iw = w < -FACE_SPLIT ? 0 : w > FACE_SPLIT ? 2 : 1;
+
+	face = 2 * face + (v[face] < 0);
+	return face * 9 + iu * 3 + iw;
+}
+
+/* Fraction of cells hit by the directions of (m - c), transformed by @w */
+static double coverage(const struct magcal_session *s, const bool *use,
+		       const double c[3], const double w[3][3])
+{
+	bool hit[COVER_BINS] = { false };
+	unsigned int i, cnt = 0;
+	int j;
+
+	for (i = 0; i < s->n; i++) {
+		double d[3], v[3];
+
+		if (use && !use[i])
+			continue;
+		for (j = 0; j < 3; j++)
+			d[j] = s->s[i].m[j] - c[j];
+		for (j = 0; j < 3; j++)
+			v[j] = w ? w[j][0] * d[0] + w[j][1] * d[1] +
+				   w[j][2] * d[2] : d[j];
+		if (norm3(v) > 0)
+			hit[cover_bin(v)] = true;
+	}
+	for (j = 0; j < COVER_BINS; j++)
+		cnt += hit[j];
+	return (double)cnt / COVER_BINS;
+}
+
+double magcal_progress(const struct magcal_session *s)
+{
+	double c[3], r;
+
+	if (!s || !sphere_fit(s, NULL, c, &r))
+		return 0;
+	return coverage(s, NULL, c, NULL);
+}
+
+/* ---- Levenberg-Marquardt on the geometric residual ---- */
+
+static void param_matrix(const double x[NPARAM], double l[3][3])
+{
+	l[0][0] = x[3];
+	l[1][1] = x[4];
+	l[2][2] = x[5];
+	l[0][1] = l[1][0] = x[6];
+	l[0][2] = l[2][0] = x[7];
+	l[1][2] = l[2][1] = x[8];
+}
+
+/* Residual of one normalised sample and, if @jac, its gradient */
+static double residual(const double x[NPARAM], const double mn[3],
+		       double jac[NPARAM])
+{
+	double l[3][3], d[3], u[3], n;
+	int j;
+
+	param_matrix(x, l);
+	for (j = 0; j < 3; j++)
+		d[j] = mn[j] - x[j];
+	for (j = 0; j < 3; j++)
+		u[j] = l[j][0] * d[0] + l[j][1] * d[1] + l[j][2] * d[2];
+	n = norm3(u);
+	if (!jac)
+		return n - 1;
+	if (n < 1e-12)
+		n = 1e-12;
+	for (j = 0; j < 3; j++) {
+		jac[j] = -(l[0][j] * u[0] + l[1][j] * u[1] + l[2][j] * u[2]) / n;
+		jac[3 + j] = u[j] * d[j] / n;
+	}
+	jac[6] = (u[0] * d[1] + u[1] * d[0]) / n;
+	jac[7] = (u[0] * d[2] + u[2] * d[0]) / n;
+	jac[8] = (u[1] * d[2] + u[2] * d[1]) / n;
+	return n - 1;
+}
+
+/* The prior rows: off-diagonal and anisotropic diagonal of L toward 0 */
+static int prior_rows(const double x[NPARAM], double r[6],
+		      double jac[6][NPARAM])
+{
+	double mean = (x[3] + x[4] + x[5]) / 3;
+	int i, j;
+
+	memset(jac, 0, 6 * sizeof(jac[0]));
+	for (i = 0; i < 3; i++) {
+		r[i] = PRIOR_WEIGHT * (x[3 + i] - mean);
+		for (j = 0; j < 3; j++)
+			jac[i][3 + j] = PRIOR_WEIGHT * ((i == j) - 1.0 / 3);
+		r[3 + i] = PRIOR_WEIGHT * x[6 + i];
+		jac[3 + i][6 + i] = PRIOR_WEIGHT;
+	}
+	return 6;
+}
+
+static void normalise(const struct fit *f, const double m[3], double mn[3])
+{
+	int j;
+
+	for (j = 0; j < 3; j++)
+		mn[j] = (m[j] - f->c0[j]) / f->f0;
+}
+
+/* Sum of squares at @x; with @jtj/@jtr the normal equations too */
+static double accumulate(const struct magcal_session *s, const bool *use,
+			 const struct fit *f, const double x[NPARAM],
+			 double jtj[NPARAM][NPARAM], double jtr[NPARAM])
+{
+	double jac[NPARAM], pr[6], pj[6][NPARAM], mn[3], cost = 0, r;
+	unsigned int i;
+	int j, k, np;
+
+	if (jtj) {
+		memset(jtj, 0, sizeof(double) * NPARAM * NPARAM);
+		memset(jtr, 0, sizeof(double) * NPARAM);
+	}
+	for (i = 0; i < s->n; i++) {
+		if (!use[i])
+			continue;
+		normalise(f, s->s[i].m, mn);
+		r = residual(x, mn, jtj ? jac : NULL);
+		cost += r * r;
+		for (j = 0; jtj && j < NPARAM; j++) {
+			for (k = 0; k < NPARAM; k++)
+				jtj[j][k] += jac[j] * jac[k];
+			jtr[j] += jac[j] * r;
+		}
+	}
+	np = prior_rows(x, pr, pj);
+	for (i = 0; i < (unsigned int)np; i++) {
+		cost += pr[i] * pr[i];
+		for (j = 0; jtj && j < NPARAM; j++) {
+			for (k = 0; k < NPARAM; k++)
+				jtj[j][k] += pj[i][j] * pj[i][k];
+			jtr[j] += pj[i][j] * pr[i];
+		}
+	}
+	return cost;
+}
+
+/* One damped step from @x; true if it lowered the cost */
+static bool lm_step(const struct magcal_session *s, const bool *use,
+		    const struct fit *f, double x[NPARAM], double *cost,
+		    double *mu)
+{
+	double jtj[NPARAM][NPARAM], jtr[NPARAM], a[NPARAM][NPARAM];
+	double b[NPARAM], dx[NPARAM], xn[NPARAM], c;
+	int j, k;
+
+	accumulate(s, use, f, x, jtj, jtr);
+	for (j = 0; j < NPARAM; j++) {
+		for (k = 0; k < NPARAM; k++)
+			a[j][k] = jtj[j][k];
+		a[j][j] += *mu * (jtj[j][j] + 1e-9);
+		b[j] = -jtr[j];
+	}
+	if (!solve(NPARAM, a, b, dx)) {
+		*mu *= 4;
+		return false;
+	}
+	for (j = 0; j < NPARAM; j++)
+		xn[j] = x[j] + dx[j];
+	c = accumulate(s, use, f, xn, NULL, NULL);
+	if (!(c < *cost)) {
+		*mu *= 4;
+		return false;
+	}
+	memcpy(x, xn, sizeof(xn));
+	*cost = c;
+	*mu = fmax(*mu / 3, 1e-12);
+	return true;
+}
+
+/* Fit the flagged samples from a sphere start; false if it failed */
+static bool fit_used(const struct magcal_session *s, const bool *use,
+		     struct fit *f)
+{
+	double cost, prev, mu = 1e-3;
+	int it;
+
+	if (!sphere_fit(s, use, f->c0, &f->f0))
+		return false;
+	memset(f->x, 0, sizeof(f->x));
+	f->x[3] = f->x[4] = f->x[5] = 1;
+	cost = accumulate(s, use, f, f->x, NULL, NULL);
+	for (it = 0; it < LM_MAX_ITER && mu < 1e12; it++) {
+		prev = cost;
+		if (lm_step(s, use, f, f->x, &cost, &mu) &&
+		    prev - cost <= LM_TOL * (prev + LM_TOL))
+			break;
+	}
+	return isfinite(cost);
+}
+
+/* ---- the result ---- */
+
+/* W, b and F from a fit; false when L is not positive definite */
+static bool fit_result(const struct fit *f, struct magcal_result *r)
+{
+	double l[3][3], det, k;
+	int i, j;
+
+	param_matrix(f->x, l);
+	det = det3(l);
+	if (!(det > 0) || l[0][0] <= 0 || l[1][1] <= 0 || l[2][2] <= 0)
+		return false;
+	k = cbrt(det);
+	for (i = 0; i < 3; i++) {
+		for (j = 0; j < 3; j++)
+			r->w[i][j] = l[i][j] / k;
+		r->bias[i] = f->c0[i] + f->f0 * f->x[i];
+	}
+	r->field_ut = f->f0 / k;
+	return true;
+}
+
+void magcal_apply(const struct magcal_result *r, const double m[3],
+		  double out[3])
+{
+	double d[3];
+	int i;
+
+	for (i = 0; i < 3; i++)
+		d[i] = m[i] - r->bias[i];
+	for (i = 0; i < 3; i++)
+		out[i] = r->w[i][0] * d[0] + r->w[i][1] * d[1] +
+			 r->w[i][2] * d[2];
+}
+
+/* |W (m - b)| - F of sample @i, uT */
+static double residual_ut(const struct magcal_session *s, unsigned int i,
+			  const struct magcal_result *r)
+{
+	double c[3];
+
+	magcal_apply(r, s->s[i].m, c);
+	return norm3(c) - r->field_ut;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+
+	return x < y ? -1 : x > y;
+}
+
+/* The @q quantile (0..1) of |residual| over the flagged samples */
+static double abs_quantile(const struct magcal_session *s, const bool *use,
+			   const struct magcal_result *r, double q)
+{
+	double v[MAGCAL_MAX_SAMPLES];
+	unsigned int i, n = 0;
+
+	for (i = 0; i < s->n; i++)
+		if (!use || use[i])
+			v[n++] = fabs(residual_ut(s, i, r));
+	if (!n)
+		return 0;
+	qsort(v, n, sizeof(v[0]), cmp_double);
+	return v[(unsigned int)(q * (n - 1) + 0.5)];
+}
+
+/* Flag the samples within @limit uT; returns whether the set changed */
+static bool select_within(const struct magcal_session *s,
+			  const struct magcal_result *r, double limit,
+			  bool *use)
+{
+	bool changed = false;
+	unsigned int i;
+
+	for (i = 0; i < s->n; i++) {
+		bool in = fabs(residual_ut(s, i, r)) <= limit;
+
+		changed |= in != use[i];
+		use[i] = in;
+	}
+	return changed;
+}
+
+/* xorshift64: the RANSAC draws, seeded per solve (no global state) */
+static unsigned int draw(unsigned long long *state, unsigned int n)
+{
+	*state ^= *state << 13;
+	*state ^= *state >> 7;
+	*state ^= *state << 17;
+	return (unsigned int)(*state % n);
+}
+
+/* Flag the samples within RANSAC_TOL of the sphere (c, r); count them */
+static unsigned int sphere_inliers(const struct magcal_session *s,
+				   const double c[3], double r, bool *use)
+{
+	unsigned int i, cnt = 0;
+
+	for (i = 0; i < s->n; i++) {
+		bool in = fabs(dist3(s->s[i].m, c) - r) <= RANSAC_TOL * r;
+
+		if (use)
+			use[i] = in;
+		cnt += in;
+	}
+	return cnt;
+}
+
+/* The first sample set: the inliers of the best of RANSAC_TRIES spheres */
+static void ransac_start(const struct magcal_session *s, bool *use)
+{
+	unsigned long long state = 0x9e3779b97f4a7c15ULL ^ s->n;
+	bool pick[MAGCAL_MAX_SAMPLES];
+	double c[3], r, best_c[3] = { 0 }, best_r = 0;
+	unsigned int t, k, best = 0, cnt;
+
+	for (t = 0; t < RANSAC_TRIES; t++) {
+		memset(pick, 0, s->n * sizeof(pick[0]));
+		for (k = 0; k < 4; k++)
+			pick[draw(&state, s->n)] = true;
+		if (!sphere_fit(s, pick, c, &r) ||
+		    r < RANSAC_RADIUS_SLACK * s->cfg.field_min_ut ||
+		    r > s->cfg.field_max_ut / RANSAC_RADIUS_SLACK)
+			continue;
+		cnt = sphere_inliers(s, c, r, NULL);
+		if (cnt > best) {
+			best = cnt;
+			memcpy(best_c, c, sizeof(c));
+			best_r = r;
+		}
+	}
+	if (best >= 10) {
+		sphere_inliers(s, best_c, best_r, use);
+		return;
+	}
+	/* no plausible sphere: fit them all, the verdict will say why */
+	for (t = 0; t < s->n; t++)
+		use[t] = true;
+}
+
+/* Rounds of fit and selection; false when a fit failed */
+static bool robust_fit(const struct magcal_session *s, bool *use,
+		       struct fit *f, struct magcal_result *r)
+{
+	double limit;
+	int round;
+
+	ransac_start(s, use);
+	for (round = 0; round < ROBUST_ROUNDS; round++) {
+		if (!fit_used(s, use, f) || !fit_result(f, r))
+			return false;
+		limit = MAD_TO_SIGMA * ROBUST_SIGMAS *
+			abs_quantile(s, use, r, 0.5);
+		limit = fmax(limit, s->cfg.outlier_ut);
+		if (!select_within(s, r, limit, use))
+			return true;
+	}
+	return fit_used(s, use, f) && fit_result(f, r);
+}
+
+/*
+ * How well the samples pin the fit down: the standard deviations of the
+ * nine parameters from the data alone (sigma^2 (J^T J)^-1, no prior), as
+ * a direction error of the calibrated field in degrees: the bias' share
+ * (its largest std over F) and the shape's (the largest std of L, which
+ * is relative), combined. A direction the motion did not observe has a
+ * huge std: the fit there is the prior's guess, not a measurement.
+ */
+static double uncertainty_deg(const struct magcal_session *s, const bool *use,
+			      const struct fit *f,
+			      const struct magcal_result *r)
+{
+	double jtj[NPARAM][NPARAM] = { { 0 } }, jac[NPARAM], mn[3];
+	double a[NPARAM][NPARAM], e[NPARAM], col[NPARAM], var[NPARAM];
+	double sq = 0, sigma2, eb = 0, el = 0, res;
+	unsigned int i, n = 0;
+	int j, k;
+
+	for (i = 0; i < s->n; i++) {
+		if (!use[i])
+			continue;
+		normalise(f, s->s[i].m, mn);
+		res = residual(f->x, mn, jac);
+		sq += res * res;
+		n++;
+		for (j = 0; j < NPARAM; j++)
+			for (k = 0; k < NPARAM; k++)
+				jtj[j][k] += jac[j] * jac[k];
+	}
+	if (n <= NPARAM)
+		return INFINITY;
+	/*
+	 * The noise seen, but no more than the residual allowed: samples off
+	 * the ellipsoid are the residual's verdict, this one is geometry's
+	 */
+	sigma2 = fmin(sq / (n - NPARAM),
+		      pow(s->cfg.max_residual_ut / r->field_ut, 2));
+	for (j = 0; j < NPARAM; j++) {
+		memcpy(a, jtj, sizeof(a));
+		for (k = 0; k < NPARAM; k++) {
+			a[k][k] += 1e-12;
+			e[k] = k == j;
+		}
+		if (!solve(NPARAM, a, e, col))
+			return INFINITY;
+		var[j] = sigma2 * col[j];
+	}
+	for (j = 0; j < 3; j++) {
+		eb = fmax(eb, sqrt(fmax(0, var[j])) * f->f0 / r->field_ut);
+		el = fmax(el, sqrt(fmax(0, var[3 + j])));
+		el = fmax(el, sqrt(fmax(0, var[6 + j])));
+	}
+	return hypot(eb, el) * DEG_PER_RAD;
+}
+
+static void quality(const struct magcal_session *s, const bool *use,
+		    struct magcal_result *r)
+{
+	double sq = 0, dip = 0, c[3];
+	unsigned int i, ndip = 0;
+
+	r->used = r->rejected = 0;
+	for (i = 0; i < s->n; i++) {
+		double e;
+
+		if (!use[i]) {
+			r->rejected++;
+			continue;
+		}
+		r->used++;
+		e = residual_ut(s, i, r);
+		sq += e * e;
+		magcal_apply(r, s->s[i].m, c);
+		if (s->s[i].has_g && norm3(s->s[i].g) > 0 && norm3(c) > 0) {
+			double cosang = (c[0] * s->s[i].g[0] +
+					 c[1] * s->s[i].g[1] +
+					 c[2] * s->s[i].g[2]) /
+					(norm3(c) * norm3(s->s[i].g));
+
+			dip += asin(fmax(-1, fmin(1, -cosang))) * DEG_PER_RAD;
+			ndip++;
+		}
+	}
+	r->residual_ut = r->used ? sqrt(sq / r->used) : 0;
+	r->coverage = coverage(s, use, r->bias, r->w);
+	r->has_dip = ndip > 0;
+	r->dip_deg = ndip ? dip / ndip : 0;
+}
+
+static enum magcal_status verdict(const struct magcal_config *cfg,
+				  const struct magcal_result *r)
+{
+	if (r->used < cfg->min_samples || r->coverage < cfg->min_coverage ||
+	    !(r->uncertainty_deg <= cfg->max_uncertainty_deg))
+		return MAGCAL_NO_COVERAGE;
+	if (r->field_ut < cfg->field_min_ut || r->field_ut > cfg->field_max_ut)
+		return MAGCAL_FIELD_IMPLAUSIBLE;
+	if (r->residual_ut > cfg->max_residual_ut)
+		return MAGCAL_RESIDUAL_HIGH;
+	return MAGCAL_OK;
+}
+
+int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
+{
+	bool use[MAGCAL_MAX_SAMPLES];
+	struct fit f;
+	unsigned int i;
+
+	if (!s || !r)
+		return -EINVAL;
+	memset(r, 0, sizeof(*r));
+	r->w[0][0] = r->w[1][1] = r->w[2][2] = 1;
+	for (i = 0; i < s->n; i++)
+		use[i] = true;
+	if (s->n < 10) {
+		r->used = s->n;
+		r->status = MAGCAL_NO_COVERAGE;
+		return 0;
+	}
+	if (!robust_fit(s, use, &f, r)) {
+		r->status = MAGCAL_SINGULAR;
+		return 0;
+	}
+	quality(s, use, r);
+	r->uncertainty_deg = uncertainty_deg(s, use, &f, r);
+	r->status = verdict(&s->cfg, r);
+	return 0;
+}
+
+const char *magcal_status_str(enum magcal_status st)
+{
+	switch (st) {
+	case MAGCAL_OK:
+		return "ok";
+	case MAGCAL_NO_COVERAGE:
+		return "not enough coverage";
+	case MAGCAL_FIELD_IMPLAUSIBLE:
+		return "field implausible for Earth";
+	case MAGCAL_RESIDUAL_HIGH:
+		return "residual too high";
+	case MAGCAL_SINGULAR:
+		return "fit did not converge";
+	}
+	return "unknown";
+}
+
+void magcal_split(const struct magcal_result *r, double diag[3],
+		  double resid[3][3])
+{
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		diag[i] = r->w[i][i];
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			resid[i][j] = r->w[i][j] / diag[j];
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+	out[0] = a[1] * b[2] - a[2] * b[1];
+	out[1] = a[2] * b[0] - a[0] * b[2];
+	out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+int magcal_heading_deg(const double field[3], const double up[3],
+		       double declination_deg, double *heading)
+{
+	double e[3], n[3], u[3], ne, nu, h;
+	int i;
+
+	nu = norm3(up);
+	if (!(nu > 0))
+		return -EDOM;
+	for (i = 0; i < 3; i++)
+		u[i] = up[i] / nu;
+	cross3(field, u, e);		/* east: field x up */
+	ne = norm3(e);
+	if (!(ne > 1e-9 * norm3(field)) || !(ne > 0))
+		return -EDOM;
+	for (i = 0; i < 3; i++)
+		e[i] /= ne;
+	cross3(u, e, n);		/* north: up x east */
+	if (hypot(e[1], n[1]) < 1e-6)
+		return -EDOM;		/* +Y points straight up or down */
+	h = atan2(e[1], n[1]) * DEG_PER_RAD + declination_deg;
+	h = fmod(h, 360);
+	if (h < 0)
+		h += 360;
+	*heading = h >= 360 ? 0 : h;
+	return 0;
+}

@@ -1,0 +1,199 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * magcal: magnetometer calibration (hard and soft iron) from the samples a
+ * device produces while it moves, for the AS9888 calibration daemon.
+ *
+ * The model: the magnetometer reads m = S b_ext + h (+ noise), b_ext the
+ * external field (the Earth's, constant in the world), h the hard iron, S
+ * the soft iron. The samples of a turning device lie on an ellipsoid; the
+ * fit finds its centre b (= h) and a symmetric W with |W (m - b)| = F for
+ * every sample, F the field's magnitude. The calibrated field is then
+ * c = W (m - b).
+ *
+ * A session keeps a bounded set of samples (at most MAGCAL_MAX_SAMPLES,
+ * the most recent distinct ones), reports how much of the sphere of
+ * directions they cover, and solves on request: a robust fit (outliers
+ * such as a passing magnet are found and left out), regularised toward a
+ * sphere where the motion left a direction unobserved, with quality
+ * figures and a status.
+ *
+ * The scale of W is not observable (a sphere of radius kF reads the same
+ * as one of F): W is normalised to det(W) = 1, so an isotropic gain of the
+ * board's soft iron stays in the calibrated magnitude. Heading, which
+ * uses directions only, does not depend on it.
+ *
+ * Userspace C99, double arithmetic, no global state: sessions are
+ * independent and may be used from different threads (one thread per
+ * session). Units: uT for fields, degrees for angles.
+ */
+#ifndef MAGCAL_H
+#define MAGCAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#define MAGCAL_MAX_SAMPLES	300
+
+/**
+ * enum magcal_status - the verdict of magcal_solve()
+ * @MAGCAL_OK:			the fit meets every quality figure
+ * @MAGCAL_NO_COVERAGE:		too few samples, or they cover too little of
+ *				the sphere of directions, or they leave the
+ *				fit uncertain (keep moving)
+ * @MAGCAL_FIELD_IMPLAUSIBLE:	the fitted magnitude is outside the Earth's
+ *				(config field_min_ut .. field_max_ut): a
+ *				magnet, a wrong scale
+ * @MAGCAL_RESIDUAL_HIGH:	the samples do not lie on one ellipsoid (a
+ *				disturbance through the session, a changing
+ *				hard iron): rms above config max_residual_ut
+ * @MAGCAL_SINGULAR:		the fit did not converge (degenerate data)
+ */
+enum magcal_status {
+	MAGCAL_OK = 0,
+	MAGCAL_NO_COVERAGE,
+	MAGCAL_FIELD_IMPLAUSIBLE,
+	MAGCAL_RESIDUAL_HIGH,
+	MAGCAL_SINGULAR,
+};
+
+/**
+ * struct magcal_config - thresholds (magcal_config_default() fills them)
+ * @max_samples:	samples kept, 1..MAGCAL_MAX_SAMPLES
+ * @min_samples:	fewer samples used than this: MAGCAL_NO_COVERAGE
+ * @min_coverage:	coverage (0..1) below this: MAGCAL_NO_COVERAGE
+ * @min_separation_ut:	a sample closer than this to a kept one replaces
+ *			nothing and is not kept (a device lying still)
+ * @field_min_ut:	plausible Earth field, lower bound (20)
+ * @field_max_ut:	plausible Earth field, upper bound (70)
+ * @max_residual_ut:	residual rms above this: MAGCAL_RESIDUAL_HIGH
+ * @outlier_ut:		a sample whose residual exceeds the larger of this
+ *			and 4 robust standard deviations is rejected
+ * @max_uncertainty_deg: the fit's own uncertainty (see magcal_result)
+ *			above this: MAGCAL_NO_COVERAGE
+ */
+struct magcal_config {
+	unsigned int max_samples;
+	unsigned int min_samples;
+	double min_coverage;
+	double min_separation_ut;
+	double field_min_ut;
+	double field_max_ut;
+	double max_residual_ut;
+	double outlier_ut;
+	double max_uncertainty_deg;
+};
+
+/**
+ * struct magcal_result - what magcal_solve() found
+ * @status:	the verdict; the numbers below are filled whenever a fit was
+ *		made (also with a status other than MAGCAL_OK) so that a
+ *		caller can show why
+ * @bias:	hard iron b, uT, sensor frame
+ * @w:		soft-iron correction W, symmetric, det(W) = 1
+ * @field_ut:	fitted field magnitude F, uT
+ * @residual_ut: rms of |W (m - b)| - F over the samples used, uT
+ * @coverage:	fraction of the sphere of directions covered, 0..1
+ * @used:	samples the fit used
+ * @rejected:	samples left out as outliers
+ * @uncertainty_deg: how well the samples pin the fit down, as a
+ *		direction error of the calibrated field (degrees, one standard
+ *		deviation, from the parameters' covariance without the prior):
+ *		large when the motion left a direction unobserved
+ * @dip_deg:	field inclination seen against gravity (mean angle below
+ *		the horizon), when gravity was given with the samples used;
+ *		else 0
+ * @has_dip:	@dip_deg is valid
+ */
+struct magcal_result {
+	enum magcal_status status;
+	double bias[3];
+	double w[3][3];
+	double field_ut;
+	double residual_ut;
+	double coverage;
+	unsigned int used;
+	unsigned int rejected;
+	double uncertainty_deg;
+	double dip_deg;
+	bool has_dip;
+};
+
+struct magcal_session;
+
+/* The default thresholds (see struct magcal_config). */
+void magcal_config_default(struct magcal_config *cfg);
+
+/*
+ * A new, empty session with @cfg (NULL: the defaults). Returns NULL on
+ * allocation failure or an invalid @cfg.
+ */
+struct magcal_session *magcal_new(const struct magcal_config *cfg);
+void magcal_free(struct magcal_session *s);
+
+/* Forget every sample (a new session with the same configuration). */
+void magcal_reset(struct magcal_session *s);
+
+/**
+ * magcal_add() - offer one sample
+ * @s:		the session
+ * @m_ut:	the magnetometer's reading, uT, sensor frame (uncalibrated)
+ * @gravity:	the accelerometer's reading at the same time (any scale,
+ *		pointing up when the device is still), or NULL
+ *
+ * Return: 1 when the sample was kept, 0 when it was too close to a kept
+ * one (not kept), -EINVAL for a reading that is not finite.
+ */
+int magcal_add(struct magcal_session *s, const double m_ut[3],
+	       const double *gravity);
+
+/* Samples kept now. */
+unsigned int magcal_count(const struct magcal_session *s);
+
+/*
+ * Progress: the fraction (0..1) of the sphere of directions the kept
+ * samples cover, seen from the current estimate of the centre.
+ */
+double magcal_progress(const struct magcal_session *s);
+
+/*
+ * Fit the kept samples. Returns 0 with @r filled (r->status is the
+ * verdict), or -EINVAL for NULL arguments. The session is unchanged.
+ */
+int magcal_solve(const struct magcal_session *s, struct magcal_result *r);
+
+/* Human-readable name of a status ("ok", "not enough coverage", ...). */
+const char *magcal_status_str(enum magcal_status st);
+
+/* The full correction: out = W (m - b). @out may be @m. */
+void magcal_apply(const struct magcal_result *r, const double m[3],
+		  double out[3]);
+
+/**
+ * magcal_split() - split W for the driver and userspace
+ * @r:		a result
+ * @diag:	the diagonal D the driver applies (its calibscale per axis)
+ * @resid:	R = W D^-1, what userspace applies to the driver's output
+ *
+ * W (m - b) = R D (m - b): the driver subtracts the bias and scales each
+ * axis, userspace multiplies by R (the identity when W is diagonal).
+ */
+void magcal_split(const struct magcal_result *r, double diag[3],
+		  double resid[3][3]);
+
+/**
+ * magcal_heading_deg() - tilt-compensated compass heading
+ * @field:	calibrated field, sensor frame (any scale)
+ * @up:		the accelerometer's reading of a still device (points up,
+ *		any scale), sensor frame
+ * @declination_deg: magnetic north's angle east of true north (0 for a
+ *		magnetic heading)
+ * @heading:	the heading of the sensor's +Y axis, clockwise from north,
+ *		0 <= heading < 360
+ *
+ * Return: 0, or -EDOM when the field is parallel to up or +Y points
+ * straight up or down (no heading).
+ */
+int magcal_heading_deg(const double field[3], const double up[3],
+		       double declination_deg, double *heading);
+
+#endif /* MAGCAL_H */

@@ -1,0 +1,168 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# The magnetometer's calibration as userspace sees it: show (text and
+# JSON), the daemon's "magn" request, recalibrate keeping the section, a
+# format 1 record saying it has none. And the field mode: a magnetometer
+# consumer hands the daemon the samples it reads anyway ("magn-feed"); the
+# daemon learns the calibration from them without touching the device,
+# rewrites the record only for a meaningful change and at most once per
+# 6 hours, and logs nothing per sample. Output is TAP.
+set -u
+
+calibd=${1:?usage: magn.sh PATH-TO-as9888-calibd}
+calibd=$(realpath "$calibd")
+here=$(cd "$(dirname "$0")" && pwd)
+if [ -z "${AS9888_IN_NETNS:-}" ]; then
+	# the daemon listens to uevents: none of the host's may reach it
+	if [ "$(id -u)" -eq 0 ] && unshare --net true 2>/dev/null; then
+		AS9888_IN_NETNS=1 exec unshare --net "$0" "$calibd"
+	fi
+	echo "1..0 # SKIP needs root for a private network namespace"
+	exit 77
+fi
+
+work=$(mktemp -d /tmp/as9888-magn-XXXXXX)
+export ASAN_OPTIONS=detect_leaks=1
+pid=
+cleanup() { [ -n "$pid" ] && kill "$pid" 2>/dev/null; rm -rf "$work"; }
+trap cleanup EXIT
+# shellcheck source=../lib/tap.sh
+. "$here/../lib/tap.sh"
+TAP_SHOW="$work/err $work/log $work/feed"
+# no driver here: an empty sysfs
+mkdir -p "$work/sys" "$work/run"
+export AS9888_SYSFS=$work/sys
+export RUNTIME_DIRECTORY=$work/run
+
+rec=$work/state/calibration
+sim=(--sim-clock virtual --unit /dev/null)
+"$calibd" factory-test "${sim[@]}" --record "$rec" >/dev/null ||
+	{ echo "Bail out! no factory record"; exit 1; }
+
+run show --record "$rec"
+check "format 1: show has no magnetometer part" eval '[ $rc -eq 0 ] && ! says Magnetometer out'
+"$here/magn_inject.py" "$rec"
+check "the injected record is format 2" grep -q "^format = as9888-calibration 2$" "$rec"
+
+run show --record "$rec"
+check "show prints the magnetometer's calibration and the driver's part" eval '[ $rc -eq 0 ] &&
+	says "^Magnetometer, learned 2026-11-23T00:00:00Z from 300 samples (coverage 0.875)" out &&
+	says "hard iron b \[uT\] *30.000 *-45.500 *100.250" out &&
+	says "driver calibbias \[LSB\] *-100 *149 *-341" out &&
+	says "driver calibscale *1.020000 *0.985000 *1.003000" out'
+run show --json --record "$rec"
+check "show --json: the magnetometer object, HAL bias W*b" python3 - "$work/out" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))["magnetometer"]
+b, W = d["hard_iron"], d["soft_iron"]
+assert b == [30.0, -45.5, 100.25], b
+assert d["calibbias"] == [-100, 149, -341], d
+hal = [sum(W[i][j] * b[j] for j in range(3)) for i in range(3)]
+assert all(abs(hal[i] - d["hal_bias"][i]) < 1e-5 for i in range(3)), (hal, d)
+R = d["residual_matrix"]
+assert all(abs(R[i][j] - W[i][j] / W[j][j]) < 1e-6 for i in range(3) for j in range(3))
+PY
+
+sock=$work/sock
+"$calibd" daemon "${sim[@]}" --record "$rec" --socket "$sock" 2>"$work/log" &
+pid=$!
+for _ in $(seq 200); do [ -S "$sock" ] && break; sleep 0.05; done
+out=$("$calibd" request magn --socket "$sock")
+check "request magn: the calibration, exit status 0" eval 'grep -q "^Magnetometer, learned" <<<"$out" &&
+	grep -q "HAL bias" <<<"$out" && grep -q "^exit status 0" <<<"$out"'
+out=$("$calibd" request magn --json --socket "$sock")
+check "request magn --json: one JSON object" python3 -c '
+import json, sys
+d = json.loads(sys.argv[1])
+assert d["field"] == 48.512 and d["samples"] == 300, d' "$out"
+
+# recalibrate (the accelerometer) keeps the magnetometer's section
+grep '^magn_' "$rec" >"$work/magn-before"
+run recalibrate "${sim[@]}" --record "$rec"
+grep '^magn_' "$rec" >"$work/magn-after"
+check "recalibrate keeps the magnetometer's calibration" eval '[ $rc -eq 0 ] &&
+	cmp -s "$work/magn-before" "$work/magn-after" &&
+	grep -q "^format = as9888-calibration 2$" "$rec" &&
+	grep -q "^magn_" "$rec.previous"'
+
+# rollback brings a format 1 record back: "magn" says there is none
+"$calibd" factory-test "${sim[@]}" --record "$rec" >/dev/null
+out=$("$calibd" request magn --socket "$sock" 2>&1)
+check "request magn on a format 1 record: exit status 1, says to run magn-calibrate" eval '
+	grep -q "no magnetometer calibration" <<<"$out" && grep -q "magn-calibrate" <<<"$out" &&
+	grep -q "^exit status 1" <<<"$out"'
+
+# the field mode, from that format 1 record
+# hard iron within @2 uT of (@3 @4 @5)
+hard_iron_near() {
+	python3 - "$rec" "$@" <<'PY'
+import sys
+keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines() if " = " in l)
+b = [float(v) for v in keys["magn_hard_iron"].split()]
+tol = float(sys.argv[2]); h = [float(v) for v in sys.argv[3:6]]
+print("# hard iron", b)
+assert max(abs(x - y) for x, y in zip(b, h)) < tol, (b, h)
+PY
+}
+
+"$here/magn_feed.py" "$sock" 49 1 120 -80 45 >"$work/feed" 2>&1
+check "field mode, 49 samples: no fit yet, the record untouched (format 1)" eval '
+	grep -q "^format = as9888-calibration 1$" "$rec"'
+"$here/magn_feed.py" "$sock" 1 2 120 -80 45 >"$work/feed" 2>&1
+check "the 50th: a good fit, stored as format 2" eval '
+	grep -q "^fit: ok" "$work/feed" && grep -q "^format = as9888-calibration 2$" "$rec"'
+check "the learned hard iron is the board's, within 1.5 uT" hard_iron_near 1.5 120 -80 45
+check "the rewrite is logged once, the samples not at all" eval '
+	[ "$(grep -c "field mode: magnetometer calibration refined" "$work/log")" -eq 1 ] &&
+	! grep -q "magn-feed" "$work/log"'
+
+# the board's hard iron moves by 5 uT: within 6 hours nothing is rewritten
+cp "$rec" "$work/first"
+"$here/magn_feed.py" "$sock" 150 3 125 -80 45 >"$work/feed" 2>&1
+check "a new estimate within 6 hours of the last: the record is not rewritten" \
+	cmp -s "$rec" "$work/first"
+
+# make the calibration 7 hours old (re-sealed)
+age() {
+	python3 - "$rec" "$1" <<'PY'
+import sys, time, zlib
+path, hours = sys.argv[1], float(sys.argv[2])
+t = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(time.time() - hours * 3600))
+text = open(path).read()
+body = text[:text.index("crc32 = ")]
+body = "".join(("magn_learned = %s\n" % t) if l.startswith("magn_learned = ") else l + "\n"
+               for l in body.splitlines())
+open(path, "w").write(body + "crc32 = %08x\n" % zlib.crc32(body.encode()))
+PY
+}
+# a reboot in between: the samples on the tmpfs are gone
+age 7
+rm -f "$work/run/magn-samples"
+cp "$rec" "$work/aged"
+"$here/magn_feed.py" "$sock" 100 4 120 -80 45 >"$work/feed" 2>&1
+check "7 hours old, the same board again (a change below 1 uT): not rewritten" \
+	cmp -s "$rec" "$work/aged"
+rm -f "$work/run/magn-samples"
+"$here/magn_feed.py" "$sock" 300 5 125 -80 45 >"$work/feed" 2>&1
+check "7 hours old, the hard iron 5 uT off: rewritten with the new estimate" eval '
+	! cmp -s "$rec" "$work/aged" && hard_iron_near 1.5 125 -80 45'
+check "the calibration it replaced is kept as the previous record" \
+	cmp -s "$rec.previous" "$work/aged"
+check "the samples stay on the runtime directory, at most 300" eval '
+	[ "$(grep -vc "^#" "$work/run/magn-samples")" -eq 300 ]'
+
+# after all that, idle again: the field mode leaves nothing behind that
+# wakes the daemon (no timer, no file watch); as daemon.sh measures it
+switches() { awk '/^voluntary_ctxt_switches/ { print $2 }' "/proc/$pid/status"; }
+sleep 1	# the last request's child reaped
+w0=$(switches)
+sleep 3
+w1=$(switches)
+echo "# idle for 3 s after the field mode: $((w1 - w0)) wake-ups"
+check "idle after the field mode: no wake-ups" test $((w1 - w0)) -eq 0
+
+kill "$pid"
+wait "$pid" 2>/dev/null
+pid=
+tap_end

@@ -1,0 +1,144 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-2.0
+#
+# as9888-calibd magn-calibrate on the simulator (virtual clock): a board
+# with hard and soft iron turned by the model's tumble is calibrated and
+# the stored hard iron and soft iron are compared with the unit's truth;
+# a device lying still, an implausible field and a passing magnet fail
+# (or, for the magnet, are rejected) with a clear message and leave the
+# record as it was; the options are checked. Output is TAP.
+set -u
+
+calibd=${1:?usage: magn_calibrate.sh PATH-TO-as9888-calibd}
+calibd=$(realpath "$calibd")
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d /tmp/as9888-magncal-XXXXXX)
+export ASAN_OPTIONS=detect_leaks=1
+trap 'rm -rf "$work"' EXIT
+# shellcheck source=../lib/tap.sh
+. "$here/../lib/tap.sh"
+TAP_SHOW="$work/err $work/out"
+mkdir -p "$work/sys"
+export AS9888_SYSFS=$work/sys
+
+rec=$work/state/calibration
+# the factory test's record: the built-in unit lying still (its EEPROM is
+# the same chip's as every unit below, which give none)
+"$calibd" factory-test --sim-clock virtual --unit /dev/null --record "$rec" >/dev/null ||
+	{ echo "Bail out! no factory record"; exit 1; }
+cp "$rec" "$work/factory"
+
+# a board: Earth 48 uT dipping 60 deg, hard iron, soft iron with cross terms
+cat >"$work/board.unit" <<'UNIT'
+earth = 48 60 3
+hard_iron = 120 -80 45
+soft_iron = 1.05 0.03 -0.02 0.03 0.95 0.04 -0.02 0.04 1.02
+magn_noise = 0.4
+tumble = 4
+UNIT
+
+run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --record "$rec"
+check "a tumbling board: exit 0, progress shown, stored" eval '[ $rc -eq 0 ] &&
+	says "^coverage .*%, [0-9]* samples kept" out && says "^Stored in" out'
+check "the record is format 2, the factory record kept as previous" eval '
+	grep -q "^format = as9888-calibration 2$" "$rec" && cmp -s "$rec.previous" "$work/factory"'
+check "hard iron within 1 uT and soft iron within 1% of the unit's truth" \
+	python3 - "$rec" <<'PY'
+import sys
+keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines()
+            if " = " in l)
+b = [float(v) for v in keys["magn_hard_iron"].split()]
+w = [float(v) for v in keys["magn_soft_iron"].split()]
+W = [w[0:3], w[3:6], w[6:9]]
+S = [[1.05, 0.03, -0.02], [0.03, 0.95, 0.04], [-0.02, 0.04, 1.02]]
+h = [120, -80, 45]
+err_b = max(abs(b[i] - h[i]) for i in range(3))
+M = [[sum(W[i][k] * S[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+det = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1])
+       - M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0])
+       + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]))
+k = det ** (1 / 3)
+err_w = max(abs(M[i][j] / k - (i == j)) for i in range(3) for j in range(3))
+print(f"# hard iron off by {err_b:.3f} uT, W*S off the identity by {err_w:.4f}")
+field = float(keys["magn_field"])
+# W is normalised to det 1: the fitted field is 48 uT times S's mean gain
+assert 40 < field < 56, field
+assert err_b < 1.0 and err_w < 0.01, (b, W)
+PY
+
+# failures leave the record as it was
+cp "$rec" "$work/before"
+run magn-calibrate --sim-clock virtual --unit /dev/null --timeout 20 --record "$rec"
+check "a device lying still: exit 1 after the timeout, says to turn it, record unchanged" eval '
+	[ $rc -eq 1 ] && says "not enough orientations covered" err &&
+	says "record is unchanged" err && cmp -s "$rec" "$work/before"'
+
+sed 's/^earth = 48/earth = 110/' "$work/board.unit" >"$work/strong.unit"
+run magn-calibrate --sim-clock virtual --unit "$work/strong.unit" --timeout 60 --record "$rec"
+check "a 110 uT field: exit 1, not the Earth's, record unchanged" eval '
+	[ $rc -eq 1 ] && says "is not the Earth" err && cmp -s "$rec" "$work/before"'
+
+# a magnet passing during the session: rejected (the result is still
+# right) or the session fails saying so; never a wrong calibration stored
+printf 'disturbance = 300 -200 150 60\n' | cat "$work/board.unit" - >"$work/magnet.unit"
+run magn-calibrate --sim-clock virtual --unit "$work/magnet.unit" --timeout 60 --record "$rec"
+if [ $rc -eq 0 ]; then
+	check "a passing magnet is rejected: the stored hard iron is still within 1 uT" \
+		python3 -c '
+import sys
+keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines() if " = " in l)
+b = [float(v) for v in keys["magn_hard_iron"].split()]
+assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b' "$rec"
+else
+	check "a passing magnet: the session fails saying why, record unchanged" eval '
+		says "disturbance\|not the Earth\|orientations" err && cmp -s "$rec" "$work/before"'
+fi
+
+# through the driver (a sysfs tree like its own, readings that never
+# change: a device lying still), in real time
+sys=$work/sys
+bus=$sys/devices/i2c/1-000c
+mkdir -p "$bus/iio:device0" "$bus/iio:device1" "$bus/as9888-eeprom0" "$sys/bus/iio/devices"
+ln -s ../../../devices/i2c/1-000c/iio:device0 "$sys/bus/iio/devices/iio:device0"
+ln -s ../../../devices/i2c/1-000c/iio:device1 "$sys/bus/iio/devices/iio:device1"
+printf 'as9888-accel\n' >"$bus/iio:device0/name"
+printf 'as9888-magn\n' >"$bus/iio:device1/name"
+printf '\x9a\x71\x15\x5c\x80\x85\x7b\x1c\x63\xa2\x38\xe6\x9c\x0d\x8f\x8c\x04\x65\xc3\x88\x50' \
+	>"$bus/as9888-eeprom0/nvmem"
+for a in x y z; do
+	echo 100 >"$bus/iio:device1/in_magn_${a}_raw"
+	echo 5 >"$bus/iio:device0/in_accel_${a}_raw"
+	echo 0 >"$bus/iio:device0/in_accel_${a}_calibbias"
+done
+echo 256 >"$bus/iio:device0/in_accel_z_raw"
+run magn-calibrate --backend iio --timeout 2 --record "$rec"
+check "through the driver, a simulator's record: refused before anything is measured" eval '
+	[ $rc -eq 1 ] && says "written by a factory test on the simulator" err &&
+	! says "orientations" err'
+# the same record as a chip's (its source line taken out, re-sealed)
+python3 - "$rec" <<'PY'
+import sys, zlib
+text = open(sys.argv[1]).read()
+body = "".join(l + "\n" for l in text[:text.index("crc32 = ")].splitlines()
+               if l != "source = simulator")
+open(sys.argv[1], "w").write(body + "crc32 = %08x\n" % zlib.crc32(body.encode()))
+PY
+cp "$rec" "$work/before"
+run magn-calibrate --backend iio --timeout 2 --record "$rec"
+check "through the driver, a device lying still: exit 1, not enough orientations, record unchanged" eval '
+	[ $rc -eq 1 ] && says "not enough orientations covered" err && cmp -s "$rec" "$work/before"'
+printf '\x01' | dd of="$bus/as9888-eeprom0/nvmem" bs=1 seek=4 conv=notrunc status=none
+run magn-calibrate --backend iio --timeout 2 --record "$rec"
+check "through the driver, another chip: refused before sampling, says to run factory-test" eval '
+	[ $rc -eq 1 ] && says "run factory-test on this unit first" err && ! says "orientations" err'
+rm -rf "$bus/iio:device1" "$sys/bus/iio/devices/iio:device1"
+run magn-calibrate --backend iio --timeout 2 --record "$rec"
+check "through a driver without the magnetometer device: exit 1, says so" eval '
+	[ $rc -eq 1 ] && says "no as9888-magn IIO device" err'
+
+run magn-calibrate --sim-clock virtual --unit /dev/null --timeout 0 --record "$rec"
+check "--timeout 0 is a usage error" eval '[ $rc -eq 2 ] && says "timeout takes seconds 1..3600" err'
+run magn-calibrate --sim-clock virtual --unit /dev/null --record "$work/none"
+check "no factory record: exit 1, says to run factory-test" eval '
+	[ $rc -eq 1 ] && says "run factory-test first" err'
+tap_end

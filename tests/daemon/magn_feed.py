@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-2.0
+"""A magnetometer consumer feeding the daemon (its field mode).
+
+magn_feed.py SOCKET N SEED HX HY HZ: N samples of a board with hard iron
+(HX, HY, HZ) uT and the soft iron below, turned through random
+orientations in a 48 uT field dipping 60 deg, 0.4 uT noise, sent as the
+driver's output with its calibration at the defaults (calibbias 0,
+calibscale 1: no driver here), one "magn-feed" request each. Prints the
+replies' last fit line; exits 1 when a request is refused.
+"""
+import math
+import random
+import socket
+import sys
+
+S = [[1.05, 0.03, -0.02], [0.03, 0.95, 0.04], [-0.02, 0.04, 1.02]]
+
+
+def rot(q, v):
+    w, x, y, z = q
+    # v' = q v q*
+    ix = w * v[0] + y * v[2] - z * v[1]
+    iy = w * v[1] + z * v[0] - x * v[2]
+    iz = w * v[2] + x * v[1] - y * v[0]
+    iw = -x * v[0] - y * v[1] - z * v[2]
+    return [ix * w + iw * -x + iy * -z - iz * -y,
+            iy * w + iw * -y + iz * -x - ix * -z,
+            iz * w + iw * -z + ix * -y - iy * -x]
+
+
+def main():
+    path, n, seed = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+    h = [float(v) for v in sys.argv[4:7]]
+    rng = random.Random(seed)
+    dip = math.radians(60)
+    earth = [0, 48 * math.cos(dip), -48 * math.sin(dip)]   # world ENU
+    last = ""
+    for _ in range(n):
+        q = [rng.gauss(0, 1) for _ in range(4)]
+        norm = math.sqrt(sum(c * c for c in q))
+        q = [c / norm for c in q]
+        # world to sensor: the inverse rotation
+        qi = [q[0], -q[1], -q[2], -q[3]]
+        b = rot(qi, earth)
+        g = rot(qi, [0, 0, 256])
+        m = [sum(S[i][j] * b[j] for j in range(3)) + h[i] + rng.gauss(0, 0.4)
+             for i in range(3)]
+        line = "magn-feed %.3f %.3f %.3f %.0f %.0f %.0f\n" % (*m, *g)
+        s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        s.connect(path)
+        s.sendall(line.encode())
+        reply = b""
+        while True:
+            chunk = s.recv(4096)
+            if not chunk:
+                break
+            reply += chunk
+        s.close()
+        text = reply.decode()
+        if not text.rstrip().endswith("exit status 0"):
+            print("refused: " + text, file=sys.stderr)
+            sys.exit(1)
+        for row in text.splitlines():
+            if row.startswith("fit:"):
+                last = row
+    print(last)
+
+
+main()

@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * as9888_magn.h, as an application uses it (linked with libas9888magn
+ * alone): the record read, the driver's output corrected to W * (m - b),
+ * the HAL's bias, every record it must not use refused with a reason, and
+ * a sample handed to the daemon.
+ */
+#include <errno.h>
+#include <signal.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "as9888_magn.h"
+#include "record.h"
+
+static const uint8_t example[AS9888_EEPROM_LEN] = {
+	0x9a, 0x71, 0x15, 0x5c, 0x80, 0x85, 0x7b, 0x1c, 0x63, 0xa2, 0x38,
+	0xe6, 0x9c, 0x0d, 0x8f, 0x8c, 0x04, 0x65, 0xc3, 0x88, 0x50,
+};
+
+static char dir[64];
+
+static void write_record(const char *name, bool magn, char *path, size_t size)
+{
+	struct calib_record rec = {
+		.dac = { 0x0d, 0x8f, 0x8c },
+		.level_mean_q16 = { 0, 0, 256 << 16 },
+		.t_level_mdegc = 25000,
+		.gravity = { 0, 0, -1 },
+		.samples = 16,
+		.created = 1795305600,
+		.magn = {
+			.present = magn,
+			.hard_iron_nt = { -150000, 75500, 12345 },
+			.soft_iron_micro = {
+				{ 1080000, 40000, -50000 },
+				{ 40000, 920000, 25000 },
+				{ -50000, 25000, 1010000 },
+			},
+			.field_nt = 47000, .residual_nt = 500,
+			.coverage_milli = 910, .samples = 280,
+			.learned = 1795392000,
+		},
+	};
+	char buf[RECORD_MAX_SIZE];
+	FILE *f;
+	int len;
+
+	memcpy(rec.eeprom, example, sizeof(example));
+	len = record_format(&rec, buf, sizeof(buf));
+	assert_true(len > 0);
+	snprintf(path, size, "%s/%s", dir, name);
+	f = fopen(path, "w");
+	assert_non_null(f);
+	assert_int_equal(fwrite(buf, 1, (size_t)len, f), (size_t)len);
+	fclose(f);
+}
+
+static void loads_and_corrects(void **state)
+{
+	struct as9888_magn_cal cal;
+	char path[128], err[256];
+	double scale[3], bias[3];
+	int n, i, j;
+
+	write_record("cal", true, path, sizeof(path));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), 0);
+	assert_true(cal.hard_iron_ut[0] == -150 && cal.hard_iron_ut[1] == 75.5 &&
+		    fabs(cal.hard_iron_ut[2] - 12.345) < 1e-12);
+	assert_true(cal.soft_iron[0][1] == 0.04 && cal.soft_iron[2][0] == -0.05);
+	assert_true(cal.field_ut == 47 && cal.samples == 280 &&
+		    cal.coverage == 0.91 && cal.learned == 1795392000);
+	/* 150 / 0.3, -75.5 / 0.305859, -12.345 / 0.294141 */
+	assert_int_equal(cal.calibbias[0], 500);
+	assert_int_equal(cal.calibbias[1], -247);
+	assert_int_equal(cal.calibbias[2], -42);
+	assert_true(cal.calibscale[0] == 1.08 && cal.calibscale[1] == 0.92);
+	for (i = 0; i < 3; i++)
+		scale[i] = 0.3 * (example[4 + i] + 128) / 256;
+	as9888_magn_hal_bias(&cal, bias);
+	srand(7);
+	for (n = 0; n < 500; n++) {
+		double m[3], y[3], f[3], g[3], want[3];
+
+		for (i = 0; i < 3; i++)
+			m[i] = (rand() / (double)RAND_MAX - 0.5) * 600;
+		/* what the driver outputs: D * (m + calibbias * scale) */
+		for (i = 0; i < 3; i++)
+			y[i] = cal.calibscale[i] * (m[i] + cal.calibbias[i] * scale[i]);
+		as9888_magn_correct(&cal, y, f);
+		as9888_magn_correct_uncalibrated(&cal, m, g);
+		for (i = 0; i < 3; i++) {
+			double unc = 0;
+
+			want[i] = 0;
+			for (j = 0; j < 3; j++) {
+				want[i] += cal.soft_iron[i][j] * (m[j] - cal.hard_iron_ut[j]);
+				unc += cal.soft_iron[i][j] * m[j];
+			}
+			assert_true(fabs(f[i] - want[i]) < 1e-9);
+			assert_true(fabs(g[i] - want[i]) < 1e-9);
+			/* the HAL: uncalibrated (W m) - bias = calibrated */
+			assert_true(fabs(unc - bias[i] - want[i]) < 1e-9);
+		}
+	}
+}
+
+static void refuses(void **state)
+{
+	struct as9888_magn_cal cal;
+	char path[128], link[160], err[256];
+	FILE *f;
+
+	write_record("old", false, path, sizeof(path));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -ENODATA);
+	assert_non_null(strstr(err, "magn-calibrate"));
+	snprintf(path, sizeof(path), "%s/none", dir);
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -ENOENT);
+	/* one byte changed: the checksum */
+	write_record("bad", true, path, sizeof(path));
+	f = fopen(path, "r+");
+	assert_non_null(f);
+	fseek(f, -20, SEEK_END);
+	fputc('9', f);
+	fclose(f);
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "not a valid record"));
+	/* a symbolic link is not followed */
+	write_record("cal", true, path, sizeof(path));
+	snprintf(link, sizeof(link), "%s/link", dir);
+	assert_int_equal(symlink(path, link), 0);
+	assert_int_equal(as9888_magn_load(link, &cal, err, sizeof(err)), -ELOOP);
+}
+
+/*
+ * A daemon stand-in on @path: takes one connection, checks its line is
+ * @want, answers @reply (NULL: never), exits 0 when the line was right
+ */
+static pid_t serve_once(const char *path, const char *want, const char *reply)
+{
+	struct sockaddr_un sa = { .sun_family = AF_UNIX };
+	int fd = socket(AF_UNIX, SOCK_STREAM, 0);
+	pid_t pid;
+
+	assert_true(fd >= 0);
+	snprintf(sa.sun_path, sizeof(sa.sun_path), "%s", path);
+	assert_int_equal(bind(fd, (struct sockaddr *)&sa, sizeof(sa)), 0);
+	assert_int_equal(listen(fd, 1), 0);
+	pid = fork();
+	assert_true(pid >= 0);
+	if (!pid) {
+		char line[128] = { 0 };
+		int c = accept(fd, NULL, NULL);
+		ssize_t n = c < 0 ? -1 : read(c, line, sizeof(line) - 1);
+		bool ok = n > 0 && !strcmp(line, want);
+
+		if (!reply)	/* a stuck daemon */
+			pause();
+		if (c >= 0 && write(c, reply, strlen(reply)) < 0)
+			ok = false;
+		_exit(ok ? 0 : 1);
+	}
+	close(fd);
+
+	return pid;
+}
+
+static void feeds_the_daemon(void **state)
+{
+	static const double y[3] = { 12.3456, -0.5, 40 }, a[3] = { 3, -1, 255 };
+	static const char *const line = "magn-feed 12.346 -0.500 40.000 3 -1 255\n";
+	char path[128], err[256];
+	int status;
+	pid_t pid;
+
+	snprintf(path, sizeof(path), "%s/sock", dir);
+	pid = serve_once(path, line, "fit: ok\nexit status 0\n");
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), 0);
+	assert_int_equal(waitpid(pid, &status, 0), pid);
+	assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+	unlink(path);
+	/* refused by the daemon: said */
+	pid = serve_once(path, line, "as9888-calibd: no record\nexit status 1\n");
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), -EIO);
+	assert_non_null(strstr(err, "exit status 1"));
+	waitpid(pid, &status, 0);
+	unlink(path);
+	/* no daemon */
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), -ENOENT);
+	assert_non_null(strstr(err, path));
+	/* a daemon that does not answer: given up on, not waited for */
+	pid = serve_once(path, line, NULL);
+	assert_int_equal(as9888_magn_feed(path, y, a, err, sizeof(err)), -EAGAIN);
+	kill(pid, SIGKILL);
+	waitpid(pid, &status, 0);
+	unlink(path);
+}
+
+static int setup(void **state)
+{
+	snprintf(dir, sizeof(dir), "/tmp/as9888-magn-api-XXXXXX");
+	return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+	char cmd[128];
+
+	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", dir);
+	return system(cmd);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(loads_and_corrects),
+		cmocka_unit_test(refuses),
+		cmocka_unit_test(feeds_the_daemon),
+	};
+
+	return cmocka_run_group_tests_name("magn-api", tests, setup, teardown);
+}
