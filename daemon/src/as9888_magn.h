@@ -10,7 +10,7 @@
  * diagonal). What the kernel cannot take is the soft iron's cross terms
  * (and the part of the hard iron below one LSB): this API applies it.
  *
- *	struct as9888_magn_cal cal;
+ *	struct as9888_magn_calibration cal;
  *	char err[256];
  *	double y[3], f[3];
  *
@@ -37,7 +37,7 @@ extern "C" {
 #endif
 
 /**
- * struct as9888_magn_cal - one chip's magnetometer calibration
+ * struct as9888_magn_calibration - one chip's magnetometer calibration
  * @hard_iron_ut: b, the hard iron in the sensor frame, uT
  * @soft_iron:	W: the calibrated field is W * (m - b) for a field m
  *		read without any calibration
@@ -52,7 +52,7 @@ extern "C" {
  * @offset_ut:	e = D * (calibbias * scale + b): the bias below one LSB
  * @hal_bias_ut: W * b, the bias of TYPE_MAGNETIC_FIELD_UNCALIBRATED
  */
-struct as9888_magn_cal {
+struct as9888_magn_calibration {
 	double hard_iron_ut[3];
 	double soft_iron[3][3];
 	double field_ut;
@@ -73,7 +73,7 @@ struct as9888_magn_cal {
  * calibration), -EINVAL (not a valid record) or another -errno, with the
  * reason in @err.
  */
-int as9888_magn_load(const char *path, struct as9888_magn_cal *cal,
+int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,
 		     char *err, size_t errlen);
 
 /*
@@ -81,18 +81,18 @@ int as9888_magn_load(const char *path, struct as9888_magn_cal *cal,
  * scale * 100, with the record's calibbias and calibscale in the driver,
  * as restore leaves them)
  */
-void as9888_magn_correct(const struct as9888_magn_cal *cal, const double y[3],
+void as9888_magn_correct(const struct as9888_magn_calibration *cal, const double y[3],
 			 double f[3]);
 
 /*
  * The same from a field @m read without any calibration (a driver without
  * the calibration attributes, or with them at 0 and 1)
  */
-void as9888_magn_correct_uncalibrated(const struct as9888_magn_cal *cal,
+void as9888_magn_correct_uncalibrated(const struct as9888_magn_calibration *cal,
 				      const double m[3], double f[3]);
 
 /* The bias a HAL reports with TYPE_MAGNETIC_FIELD_UNCALIBRATED (uT) */
-void as9888_magn_hal_bias(const struct as9888_magn_cal *cal, double bias[3]);
+void as9888_magn_hal_bias(const struct as9888_magn_calibration *cal, double bias[3]);
 
 /*
  * Hand one sample the application read anyway to the calibration daemon

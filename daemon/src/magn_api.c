@@ -47,7 +47,7 @@ static int read_text(const char *path, char *buf, size_t size, size_t *len,
 	return 0;
 }
 
-int as9888_magn_load(const char *path, struct as9888_magn_cal *cal,
+int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,
 		     char *err, size_t errlen)
 {
 	char buf[RECORD_MAX_SIZE + 1], why[256];
@@ -96,13 +96,13 @@ int as9888_magn_load(const char *path, struct as9888_magn_cal *cal,
 	return 0;
 }
 
-void as9888_magn_correct(const struct as9888_magn_cal *cal, const double y[3],
+void as9888_magn_correct(const struct as9888_magn_calibration *cal, const double y[3],
 			 double f[3])
 {
 	magn_affine(cal->residual, y, cal->offset_ut, f);
 }
 
-void as9888_magn_correct_uncalibrated(const struct as9888_magn_cal *cal,
+void as9888_magn_correct_uncalibrated(const struct as9888_magn_calibration *cal,
 				      const double m[3], double f[3])
 {
 	magn_affine(cal->soft_iron, m, cal->hard_iron_ut, f);
@@ -172,7 +172,7 @@ int as9888_magn_feed(const char *socket_path, const double y[3],
 	return 0;
 }
 
-void as9888_magn_hal_bias(const struct as9888_magn_cal *cal, double bias[3])
+void as9888_magn_hal_bias(const struct as9888_magn_calibration *cal, double bias[3])
 {
 	memcpy(bias, cal->hal_bias_ut, sizeof(cal->hal_bias_ut));
 }

@@ -69,7 +69,7 @@ static void write_record(const char *name, bool magn, char *path, size_t size)
 
 static void loads_and_corrects(void **state)
 {
-	struct as9888_magn_cal cal;
+	struct as9888_magn_calibration cal;
 	char path[128], err[256];
 	double scale[3], bias[3];
 	int n, i, j;
@@ -118,7 +118,7 @@ static void loads_and_corrects(void **state)
 
 static void refuses(void **state)
 {
-	struct as9888_magn_cal cal;
+	struct as9888_magn_calibration cal;
 	char path[128], link[160], err[256];
 	FILE *f;
 
