@@ -333,7 +333,8 @@ static int as9888_wait_sample(struct as9888_chip *chip,
 
 /*
  * Checks that apply to every sample: data ready (ST1.DRDY) and a healthy
- * EMPT. A data overrun (ST1.DOR) only means an earlier sample was lost.
+ * EMPT. A data overrun (ST1.DOR) only means an earlier sample was lost,
+ * and is not worth a word when the driver left that sample unread itself.
  */
 int as9888_check_sample(struct as9888_chip *chip,
 			const struct as9888_raw_sample *s)
@@ -344,8 +345,9 @@ int as9888_check_sample(struct as9888_chip *chip,
 		return -EIO;
 	}
 
-	if (FIELD_GET(AS9888_ST1_DOR_MSK, s->st1))
+	if (FIELD_GET(AS9888_ST1_DOR_MSK, s->st1) && !chip->sample_skipped)
 		dev_warn_ratelimited(chip->dev, "data overrun, a sample was lost\n");
+	chip->sample_skipped = false;
 
 	if (s->empt) {
 		dev_err_ratelimited(chip->dev, "EMPT reads 0x%02x, device fault\n",
