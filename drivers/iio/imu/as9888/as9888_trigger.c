@@ -240,6 +240,8 @@ static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 	chip->trig_unread = true;
 	ret = as9888_start(chip, AS9888_MS_SINGLE, take & BIT(AS9888_MAGN));
 	if (ret) {
+		/* The MS write may have reached the chip: IDLE is power-down */
+		as9888_power_down(chip);
 		as9888_trig_gap(chip);
 		return ret;
 	}
