@@ -33,7 +33,13 @@
  *		device instantiated again; read: the description in use
  *  present	"1": instantiate the device (after a power cycle of the
  *		chip), "0": remove it; read: 0/1
- *  stats	bus and chip counters; any write zeroes the bus counters
+ *  stats	bus and chip counters; any write zeroes the bus counters.
+ *		irq_thread_starts counts the MS writes that start a
+ *		measurement made from an interrupt thread ("irq/<n>-<name>"):
+ *		a trigger handler measuring for a buffer on another trigger,
+ *		or a trigger's reenable op starting the next sample itself,
+ *		which it must not (it only re-arms). I2C only: SPI may move
+ *		a transfer to its controller's thread
  *  regs	the chip's configuration and trim registers as it holds them
  *		("0xRR 0xVV" per line), read without a bus transfer
  *  bus		"i2c-N" of the adapter, and the client name
@@ -110,9 +116,11 @@
 #include <linux/property.h>
 #include <linux/regulator/driver.h>
 #include <linux/regulator/machine.h>
+#include <linux/sched.h>
 #include <linux/slab.h>
 #include <linux/spi/spi.h>
 #include <linux/spinlock.h>
+#include <linux/string.h>
 #include <linux/uaccess.h>
 #include <linux/version.h>
 
@@ -200,6 +208,7 @@ static const char *const as9888_sim_line_names[AS9888_SIM_NLINES] = {
  * @msgs:	I2C messages
  * @model_xfers: model transfers (reads + writes) since the last zeroing
  * @model_naks:	failed model transfers since the last zeroing
+ * @irq_thread_starts: measurements started from an interrupt thread
  * @irqs:	INT edges delivered to the interrupt simulator
  * @irqs_dropped: INT1 edges not delivered (drop_int1)
  * @drop_int1:	INT1 edges still to drop
@@ -242,6 +251,7 @@ struct as9888_sim {
 	u64 msgs;
 	u64 model_xfers;
 	u64 model_naks;
+	u64 irq_thread_starts;
 	u64 irqs;
 	u64 irqs_dropped;
 	u32 drop_int1;
@@ -710,6 +720,17 @@ static int as9888_sim_add_supply(struct as9888_sim *s)
 
 /* --- I2C ------------------------------------------------------------------ */
 
+/* A write of @len bytes at @reg that starts a measurement, from an irq thread */
+static bool as9888_sim_irq_thread_start(u8 reg, const u8 *buf, u16 len)
+{
+	if (reg > AS9888_REG_MS || reg + len <= AS9888_REG_MS ||
+	    buf[AS9888_REG_MS - reg] == AS9888_MS_POWER_DOWN)
+		return false;
+
+	return (current->flags & PF_KTHREAD) &&
+	       !strncmp(current->comm, "irq/", 4);
+}
+
 static int as9888_sim_xfer(struct i2c_adapter *adap, struct i2c_msg *msgs,
 			   int num)
 {
@@ -756,6 +777,10 @@ static int as9888_sim_xfer(struct i2c_adapter *adap, struct i2c_msg *msgs,
 				continue;
 			ret = as9888_model_write(&s->model, now, s->ptr,
 						 m->buf + 1, m->len - 1);
+			if (!ret && as9888_sim_irq_thread_start(s->ptr,
+								m->buf + 1,
+								m->len - 1))
+				s->irq_thread_starts++;
 			s->ptr += m->len - 1;
 		}
 		s->model_xfers++;
@@ -1491,7 +1516,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 {
 	struct as9888_sim *s = sf->private;
 	struct as9888_model_stats st;
-	u64 xfers, msgs, mx, mn, irqs, dropped, delayed;
+	u64 xfers, msgs, mx, mn, its, irqs, dropped, delayed;
 	unsigned long flags;
 
 	spin_lock_irqsave(&s->lock, flags);
@@ -1500,6 +1525,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	msgs = s->msgs;
 	mx = s->model_xfers;
 	mn = s->model_naks;
+	its = s->irq_thread_starts;
 	irqs = s->irqs;
 	dropped = s->irqs_dropped;
 	delayed = s->irqs_delayed;
@@ -1509,6 +1535,7 @@ static int as9888_sim_stats_show(struct seq_file *sf, void *unused)
 	seq_printf(sf, "i2c_msgs %llu\n", msgs);
 	seq_printf(sf, "bus_transfers %llu\n", mx);
 	seq_printf(sf, "bus_naks %llu\n", mn);
+	seq_printf(sf, "irq_thread_starts %llu\n", its);
 	seq_printf(sf, "irqs %llu\n", irqs);
 	seq_printf(sf, "irqs_dropped %llu\n", dropped);
 	seq_printf(sf, "irqs_delayed %llu\n", delayed);
@@ -1546,6 +1573,7 @@ static ssize_t as9888_sim_stats_write(struct file *file,
 	s->msgs = 0;
 	s->model_xfers = 0;
 	s->model_naks = 0;
+	s->irq_thread_starts = 0;
 	s->irqs = 0;
 	s->irqs_dropped = 0;
 	s->irqs_delayed = 0;

@@ -333,7 +333,8 @@ static int as9888_wait_sample(struct as9888_chip *chip,
 
 /*
  * Checks that apply to every sample: data ready (ST1.DRDY) and a healthy
- * EMPT. A data overrun (ST1.DOR) only means an earlier sample was lost.
+ * EMPT. A data overrun (ST1.DOR) only means an earlier sample was lost,
+ * and is not worth a word when the driver left that sample unread itself.
  */
 int as9888_check_sample(struct as9888_chip *chip,
 			const struct as9888_raw_sample *s)
@@ -344,8 +345,9 @@ int as9888_check_sample(struct as9888_chip *chip,
 		return -EIO;
 	}
 
-	if (FIELD_GET(AS9888_ST1_DOR_MSK, s->st1))
+	if (FIELD_GET(AS9888_ST1_DOR_MSK, s->st1) && !chip->sample_skipped)
 		dev_warn_ratelimited(chip->dev, "data overrun, a sample was lost\n");
+	chip->sample_skipped = false;
 
 	if (s->empt) {
 		dev_err_ratelimited(chip->dev, "EMPT reads 0x%02x, device fault\n",
@@ -479,9 +481,13 @@ int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
  * @val: values
  * @len: number of registers
  *
- * The chip ignores trim writes outside power-down, so make sure it is in
- * power-down (and t_PD has passed, step 1-29) first, then check the write
- * with an uncached read (D10).
+ * The chip ignores trim writes outside power-down. With chip->lock held
+ * and the data-ready trigger in its gap, the chip is in power-down, so no
+ * MS read here: a measurement of as9888_measure() ends, or is aborted by
+ * a power-down write, before it lets go of the lock; one of the trigger
+ * ends before its gap, or is aborted (a failed start, the watchdog, a
+ * stop); probe writes the trim after leaving EEPROM access mode. Wait for
+ * t_PD, write, and check the write with an uncached read.
  *
  * Return: 0, -EIO when a register does not read back what was written, or
  * another negative error number.
@@ -490,7 +496,6 @@ int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,
 		      const u8 *val, size_t len)
 {
 	u8 readback[AS9888_TRIM_LEN];
-	unsigned int ms;
 	size_t i;
 	int ret;
 
@@ -499,15 +504,6 @@ int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,
 	if (len > sizeof(readback))
 		return -EINVAL;
 
-	ret = regmap_read(chip->regmap, AS9888_REG_MS, &ms);
-	if (ret)
-		return ret;
-
-	if (ms != AS9888_MS_POWER_DOWN) {
-		ret = as9888_power_down(chip);
-		if (ret)
-			return ret;
-	}
 	as9888_wait_pd(chip);
 
 	ret = regmap_bulk_write(chip->regmap, reg, val, len);

@@ -129,7 +129,8 @@ enum as9888_sensor_id {
  *		retries a start that failed, so that the trigger never stalls
  * @trig_timer:	wakes the data-ready trigger when its next sample is due
  * @trig_work:	starts the data-ready trigger's next sample (bus access:
- *		process context, queued by @trig_timer)
+ *		process context, queued by @trig_timer, or by
+ *		as9888_trig_kick() when the sample is due already)
  * @trig_state:	enum as9888_trig_state. Set under @lock, but for the step
  *		from MEASURING to FIRED, which the INT1 handler takes
  *		locklessly (atomic_cmpxchg() against the watchdog's abort)
@@ -161,12 +162,16 @@ enum as9888_sensor_id {
  *		due: a period after the last one was due, so lateness does
  *		not add up
  * @trig_users:	sensors whose buffer runs on the data-ready trigger
- * @trig_take:	sensors whose sample the trigger's current one is
+ * @trig_take:	sensors whose sample the trigger's current one is; only
+ *		their handlers read it; 0 in the gap
  * @trig_retry:	the data-ready trigger could not start its next sample: the
  *		watchdog tries again
  * @suspended:	the system is suspending or asleep: no measurement starts
  *		(a buffer on another trigger gets no samples until resume)
  * @trig_unread: the data-ready trigger's sample in flight is not read yet
+ * @sample_skipped: the data-ready trigger left a sample that came unread
+ *		(no device wanted it, or the trigger stopped): the next
+ *		sample's ST1.DOR says so, and is no lost sample of a client
  * @trig_sample: the sample of the data-ready trigger's last INT1 edge,
  *		read once for both devices
  * @trig_err:	the result of reading and checking @trig_sample
@@ -209,6 +214,7 @@ struct as9888_chip {
 	bool trig_retry;
 	bool suspended;
 	bool trig_unread;
+	bool sample_skipped;
 	struct as9888_raw_sample trig_sample;
 	int trig_err;
 	bool alpf;

@@ -7,11 +7,12 @@
  *
  * The chip has no output data rate: the trigger starts each measurement
  * itself, when the next sample of one of its devices is due, and INT1
- * fires it when the sample is ready. The sample is read once, by whichever
- * device's handler runs first, and each device whose sample it is takes
- * its own channels from it. Each device has its own sampling_frequency;
- * the trigger measures at the union of their schedules, the magnetometer
- * only in the samples of the magnetometer device. Two devices, one
+ * fires it when the sample is ready. The sample is read once, by the first
+ * handler of a device whose sample it is, and each such device takes its
+ * own channels from it; the other device's handler does not touch it.
+ * Each device has its own sampling_frequency; the trigger measures at the
+ * union of their schedules, the magnetometer only in the samples of the
+ * magnetometer device. Two devices, one
  * interrupt, a trigger of the chip that both may use: as kmx61 and
  * st_lsm9ds0 do. For both to buffer on it at once the kernel needs
  * CONFIG_IIO_CONSUMERS_PER_TRIGGER >= 2 (the default).
@@ -19,9 +20,10 @@
  * A sample goes IDLE -> MEASURING (the MS write) -> FIRED (the INT1 edge,
  * the trigger is polled) -> IDLE (the trigger's reenable op: every handler
  * is done). The reenable op only re-arms: an hrtimer wakes the trigger when
- * the next sample is due, and a work item starts it. A reenable that finds
- * no FIRED sample (one left over from before the trigger stopped and
- * started again) changes nothing.
+ * the next sample is due, or at once when it is due already, and a work
+ * item starts it; the reenable op itself neither writes the chip nor
+ * sleeps. A reenable that finds no FIRED sample (one left over from before
+ * the trigger stopped and started again) changes nothing.
  *
  * Everything else that needs the chip in power-down (a _raw read, the
  * self-test, a buffer on another trigger, an offset DAC write) waits for
@@ -196,7 +198,12 @@ static void as9888_trig_gap(struct as9888_chip *chip)
 {
 	lockdep_assert_held(&chip->lock);
 
+	/* A sample that came and that no device wanted: the next has DOR */
+	if (chip->trig_unread &&
+	    atomic_read(&chip->trig_state) == AS9888_TRIG_FIRED)
+		chip->sample_skipped = true;
 	chip->trig_unread = false;
+	chip->trig_take = 0;
 	atomic_set(&chip->trig_state, AS9888_TRIG_IDLE);
 	wake_up_all(&chip->gap_wq);
 }
@@ -233,6 +240,8 @@ static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 	chip->trig_unread = true;
 	ret = as9888_start(chip, AS9888_MS_SINGLE, take & BIT(AS9888_MAGN));
 	if (ret) {
+		/* The MS write may have reached the chip: IDLE is power-down */
+		as9888_power_down(chip);
 		as9888_trig_gap(chip);
 		return ret;
 	}
@@ -266,15 +275,29 @@ static ktime_t as9888_trig_slot(const struct as9888_chip *chip)
 	return slot;
 }
 
+/*
+ * The trigger may start its next sample: it runs for a device, in the gap,
+ * the system awake and nobody waiting for the chip; with chip->lock held
+ */
+static bool as9888_trig_may_start(const struct as9888_chip *chip)
+{
+	return chip->trig && chip->trig_running && !chip->suspended &&
+	       chip->trig_users && !chip->gap_waiters &&
+	       atomic_read(&chip->trig_state) == AS9888_TRIG_IDLE;
+}
+
 /**
- * as9888_trig_next() - the data-ready trigger's next sample
+ * as9888_trig_next() - start the data-ready trigger's next sample
  * @chip: chip state, with chip->lock held
  *
- * In the gap, with a device on the trigger and nobody waiting for the
- * chip: start the next sample if it is due, else wake up when it is. A
- * start that fails is tried a few times; when every attempt fails the
- * watchdog tries again later, so the buffer gets samples again once the
- * bus recovers.
+ * When the trigger may start a sample: start it if it is due, else wake
+ * up when it is. A start that fails is tried a few times; when every
+ * attempt fails the watchdog tries again later, so the buffer gets samples
+ * again once the bus recovers.
+ *
+ * This writes the chip and may sleep for t_PD: process context only (the
+ * work item, the watchdog, a buffer's postenable, system resume). The
+ * reenable op only re-arms (as9888_trig_kick()).
  *
  * Return: 0, or the error of the last attempt to start the sample.
  */
@@ -286,9 +309,7 @@ static int as9888_trig_next(struct as9888_chip *chip)
 	lockdep_assert_held(&chip->lock);
 
 	chip->trig_retry = false;
-	if (!chip->trig_running || chip->suspended || !chip->trig_users ||
-	    chip->gap_waiters ||
-	    atomic_read(&chip->trig_state) != AS9888_TRIG_IDLE)
+	if (!as9888_trig_may_start(chip))
 		return 0;
 
 	slot = as9888_trig_slot(chip);
@@ -314,19 +335,29 @@ static int as9888_trig_next(struct as9888_chip *chip)
 }
 
 /**
- * as9888_trig_kick() - have the data-ready trigger look at its schedule
+ * as9888_trig_kick() - arm the data-ready trigger for its next sample
  * @chip: chip state, with chip->lock held
  *
- * After a change of its devices, their rates, or the end of a wait for
- * the gap: in the gap, the work item decides (once the caller dropped the
- * lock) whether a sample starts now or later.
+ * After a sample's handlers are done (the reenable op), a change of the
+ * trigger's devices or their rates, or the end of a wait for the gap:
+ * when the trigger may start a sample, the hrtimer is set for the time it
+ * is due, or the work item queued when it is due already; the work item
+ * starts it (as9888_trig_next()) once the lock is free. Neither the bus
+ * nor a sleep: this is all the reenable op does.
  */
 void as9888_trig_kick(struct as9888_chip *chip)
 {
+	ktime_t slot;
+
 	lockdep_assert_held(&chip->lock);
 
-	if (chip->trig && chip->trig_running &&
-	    atomic_read(&chip->trig_state) == AS9888_TRIG_IDLE)
+	if (!as9888_trig_may_start(chip))
+		return;
+
+	slot = as9888_trig_slot(chip);
+	if (ktime_after(slot, ktime_get()))
+		hrtimer_start(&chip->trig_timer, slot, HRTIMER_MODE_ABS);
+	else
 		queue_work(system_highpri_wq, &chip->trig_work);
 }
 
@@ -436,9 +467,10 @@ static int as9888_trig_set_state(struct iio_trigger *trig, bool state)
  * @chip: chip state, with chip->lock held
  * @s: the sample
  *
- * The first handler to run after an INT1 edge reads the sample; the other
- * device's handler gets the same one. A handler that runs for no FIRED
- * sample (the trigger stopped meanwhile) gets none.
+ * Called by the handlers of the devices whose sample it is (chip->trig_take)
+ * only: the first to run after the INT1 edge reads the sample, the other
+ * gets the same one. A handler that runs for no FIRED sample (the trigger
+ * stopped meanwhile) gets none.
  *
  * Return: 0, -ENODATA, or the error of reading or checking the sample.
  */
@@ -465,11 +497,12 @@ int as9888_trig_sample(struct as9888_chip *chip,
 
 /*
  * The trigger's reenable op: every device's handler is done with the
- * sample. It only re-arms: the gap begins, and the next sample starts when
- * it is due (as9888_trig_next()). It runs in the last handler's thread, or
- * in a work item when the last to finish was a consumer slot without a
- * handler; one left over from before the trigger stopped and started again
- * finds no FIRED sample and does nothing.
+ * sample. It only re-arms: the gap begins, and the hrtimer or the work
+ * item is set for the next sample (as9888_trig_kick()), which the work
+ * item starts; no bus access and no sleep here. It runs in the last
+ * handler's thread, or from system_wq when the last to finish was a
+ * consumer slot without a handler; one left over from before the trigger
+ * stopped and started again finds no FIRED sample and does nothing.
  */
 static void as9888_trig_reenable(struct iio_trigger *trig)
 {
@@ -481,7 +514,7 @@ static void as9888_trig_reenable(struct iio_trigger *trig)
 		return;
 
 	as9888_trig_gap(chip);
-	as9888_trig_next(chip);
+	as9888_trig_kick(chip);
 }
 
 static const struct iio_trigger_ops as9888_trigger_ops = {
@@ -510,8 +543,8 @@ static int as9888_buffer_preenable(struct iio_dev *indio_dev)
  * The trigger runs (as9888_trig_set_state()); from now on it takes this
  * device's samples too: the first one at once, or with the other device's
  * next one when that comes within a period, so that the two are in step
- * from the start. A failure to start the trigger fails the buffer's
- * enable.
+ * from the start. The first sample starts here, in the process enabling
+ * the buffer, so that a failure to start it fails the enable.
  */
 static int as9888_buffer_postenable(struct iio_dev *indio_dev)
 {
@@ -588,15 +621,15 @@ static irqreturn_t as9888_trigger_handler(int irq, void *p)
 	int ret;
 
 	scoped_guard(mutex, &chip->lock) {
-		if (as9888_on_drdy_trigger(indio_dev)) {
-			ret = as9888_trig_sample(chip, &s);
-			/* a sample due for the other device only */
-			if (!(chip->trig_take & BIT(desc->id)))
-				ret = -ENODATA;
-		} else {
+		if (!as9888_on_drdy_trigger(indio_dev)) {
 			s = &own;
 			ret = as9888_measure(chip, desc->id, AS9888_MS_SINGLE,
 					     desc->men, &own, &ts);
+		} else if (chip->trig_take & BIT(desc->id)) {
+			ret = as9888_trig_sample(chip, &s);
+		} else {
+			/* Not this device's sample (or none): not read here */
+			ret = -ENODATA;
 		}
 
 		if (!ret)

@@ -8,8 +8,10 @@
 # written, each compensated for the DAC it was measured with;
 # the capture keeps its rate and loses no sample. (The selftest is the
 # magn device's now: beside the accel buffer it runs, 73-split.sh; under
-# the magn device's own buffer it is refused, 58-bad-input.sh.)
-plan 15
+# the magn device's own buffer it is refused, 58-bad-input.sh.) First, a
+# calibbias write with nothing running costs the DAC write and its
+# read-back only: the driver knows the chip is in power-down.
+plan 16
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 set_cal 0 0 0 25000
@@ -22,6 +24,14 @@ echo 100 > $DEV/sampling_frequency
 echo "$T" > $DEV/trigger/current_trigger
 echo 4096 > $DEV/buffer/length
 b0=$(cat $DEV/in_accel_x_calibbias)
+# (powered throughout: no runtime resume's transfers in the count)
+PWR=$(readlink -f $DEV)/../power/control
+echo on > $PWR
+x0=$(stat_get bus_transfers)
+echo $b0 > $DEV/in_accel_x_calibbias
+eq "a calibbias write with no measurement running: 2 bus transfers (DAC write, read-back)" \
+	$(($(stat_get bus_transfers) - x0)) 2
+echo auto > $PWR
 lp0=$(cat $DEV/in_accel_oversampling_ratio)
 cal0=$(cal_get)
 cat $SIM/stats > /tmp/cc-stats0

@@ -7,7 +7,10 @@
 # watchdog (the adapter's delay_int1_us). After each step the buffer must
 # deliver samples again: no sample for 30 s is a stall (the clients of the
 # bench wait 60 s; the driver's own waits are 1 s and 2 s plus two periods).
-plan 65
+# Throughout, the trigger's reenable op only re-arms: no sample is started
+# from an interrupt thread (the adapter's irq_thread_starts; the edges
+# later than a period make every reenable find its next sample due).
+plan 66
 set_unit "temperature = 25" "noise = 0"
 wait_dev 5
 T=$(dr_trig)
@@ -62,6 +65,17 @@ fi
 echo 100 > $ACC/sampling_frequency
 echo 100 > $MAG/sampling_frequency
 kmsg_mark 74-stall
+ITS0=$(stat_get irq_thread_starts)
+# For the log (DECISIONS, "gaps of up to a second"): the longest gap
+# between two samples while both buffers run undisturbed for 5 s
+acc_on
+mag_on
+sleep 5
+diag "AS9888-METRIC trigger_steady_longest_gap_ms=$(max_gap_ms /tmp/st-acc)" \
+	"(accelerometer; magnetometer $(max_gap_ms /tmp/st-mag) ms;" \
+	"$(samples /tmp/st-acc) and $(samples /tmp/st-mag) samples at 100 Hz)"
+mag_off
+acc_off
 for D in 0 3000 15000; do
 	echo $D > $SIM/delay_int1_us
 	W="edges ${D} us late"
@@ -118,6 +132,8 @@ echo 0 > $SIM/delay_int1_us
 st_flow "edges on time again, accelerometer" /tmp/st-acc 50
 acc_off
 check "edges were delayed" test "$(stat_get irqs_delayed)" -gt 0
+eq "no sample started from an interrupt thread (reenable only re-arms)" \
+	$(($(stat_get irq_thread_starts) - ITS0)) 0
 [ $CAN_SLEEP = 1 ] && echo none > /sys/power/pm_test
 check "stall: the test's mark still in the kernel log" \
 	sh -c "dmesg | grep -q 'as9888-bench: mark 74-stall'"
