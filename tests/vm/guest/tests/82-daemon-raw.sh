@@ -48,28 +48,13 @@ mkdir -p $RD
 
 # Where the chip is, by name: the adapter, the client on it, the GPIO chip
 # and its lines
-BUS=""
-for n in /sys/bus/i2c/devices/i2c-*/name; do
-	[ "$(cat "$n")" = as9888-sim-i2c ] && BUS=$(basename "$(dirname "$n")")
-done
-CLIENT=""
-for n in "/sys/bus/i2c/devices/${BUS#i2c-}"-*/name; do
-	[ "$(cat "$n" 2>/dev/null)" = as9888 ] && CLIENT=$(basename "$(dirname "$n")")
-done
-ADDR=0x${CLIENT##*-00}
-GCHIP=$(gpiodetect | sed -n 's/^\([^ ]*\) \[as9888-sim-gpio\].*/\1/p')
-gpioinfo "$GCHIP" > $RD/gpioinfo 2>&1
-line_of() { sed -n "s/^[[:space:]]*line *\([0-9]*\): *\"$1\".*/\1/p" $RD/gpioinfo; }
-RSTN=$(line_of AS9888_RSTN)
-INT1=$(line_of AS9888_INT1)
-INT2=$(line_of AS9888_INT2)
+raw_find $RD/gpioinfo
 diag "i2c: /dev/$BUS, client $CLIENT at $ADDR; gpio: $GCHIP RSTN $RSTN INT1 $INT1 INT2 $INT2"
 check "i2c-dev node of the adapter as9888-sim-i2c" test -c "/dev/$BUS"
 check "the as9888 client on it, address 0x0c..0x0f" \
 	sh -c "echo '$ADDR' | grep -q '^0x0[c-f]\$'"
 check "GPIO chip as9888-sim-gpio with lines AS9888_RSTN/INT1/INT2" \
 	test -n "$GCHIP" -a -n "$RSTN" -a -n "$INT1" -a -n "$INT2"
-RAW="--backend raw --i2c-dev /dev/$BUS --i2c-address $ADDR --gpiochip $GCHIP --rstn-line $RSTN --int1-line $INT1 --int2-line $INT2"
 
 # With the driver bound, i2c-dev refuses the address: a clear message
 $CALIBD factory-test $RAW --record $RD/bound > $RD/bound.log 2>&1
