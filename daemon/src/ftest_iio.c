@@ -61,10 +61,13 @@
 #include "iio_value.h"
 
 /*
- * Data-ready rate during the test: a filtered accelerometer sample takes
- * 4.8 ms plus two bus transfers, so 100 Hz leaves room on a slow bus.
+ * The data-ready rate during the test is the fastest the driver offers
+ * for the accelerometer alone (sampling_frequency_available, read after
+ * the filter is set: 400 Hz without it, 125 Hz with it): the driver
+ * offers only rates whose period holds the measurement, t_PD and the
+ * bus transfers. Rates above this are not taken as a driver's.
  */
-#define IIO_TEST_RATE_HZ	100
+#define IIO_TEST_RATE_MAX_HZ	100000
 /* Buffer length during the test, in samples */
 #define IIO_TEST_BUFFER_LEN	"256"
 /*
@@ -91,9 +94,14 @@ static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
 	"in_accel_x", "in_accel_y", "in_accel_z", "in_temp",
 };
 
+/*
+ * An attribute as found: @changed once the test wrote another value to
+ * it, which finish() then puts back
+ */
 struct saved_attr {
 	char name[IIO_NAME_MAX];
 	char value[IIO_ATTR_MAX];
+	bool changed;
 };
 
 /**
@@ -124,36 +132,57 @@ struct iio_test_dev {
 	struct accel_comp comp;
 };
 
-/* Remember @name's value, once, so that finish() can put it back */
-static int save_attr(struct iio_test_dev *d, const char *name)
+/*
+ * Remember @name's value, once; *@a receives its entry. 1 when it was
+ * read now, 0 when it had been saved before, or -errno.
+ */
+static int save_attr(struct iio_test_dev *d, const char *name,
+		     struct saved_attr **a)
 {
-	struct saved_attr *a;
+	struct saved_attr *s;
 	unsigned int i;
 	int ret;
 
 	for (i = 0; i < d->n_saved; i++)
-		if (!strcmp(d->saved[i].name, name))
+		if (!strcmp(d->saved[i].name, name)) {
+			*a = &d->saved[i];
 			return 0;
+		}
 	if (d->n_saved == IIO_SAVED_MAX)
 		return -ENOSPC;
-	a = &d->saved[d->n_saved];
-	if (snprintf(a->name, sizeof(a->name), "%s", name) >= (int)sizeof(a->name))
+	s = &d->saved[d->n_saved];
+	if (snprintf(s->name, sizeof(s->name), "%s", name) >= (int)sizeof(s->name))
 		return -ENAMETOOLONG;
-	ret = iio_read_attr(d->dir, name, a->value, sizeof(a->value));
+	ret = iio_read_attr(d->dir, name, s->value, sizeof(s->value));
 	if (ret < 0)
 		return ret;
+	s->changed = false;
 	d->n_saved++;
+	*a = s;
 
-	return 0;
+	return 1;
 }
 
-/* Save, then write @value to @name */
+/*
+ * Save, then write @value to @name. An attribute that reads @value as it
+ * is saved is left alone (and not put back): each write to the driver's
+ * attributes costs a system call and, for the buffer's, the IIO core's
+ * locks. Once saved, it is always written: another program may have
+ * changed it since (a level run taken again sets the buffer up again).
+ */
 static int change_attr(struct iio_test_dev *d, const char *name,
 		       const char *value)
 {
-	int ret = save_attr(d, name);
+	struct saved_attr *a;
+	int ret = save_attr(d, name, &a);
 
-	return ret ? ret : iio_write_attr(d->dir, name, value);
+	if (ret < 0)
+		return ret;
+	if (ret && !strcmp(a->value, value))
+		return 0;
+	a->changed = true;
+
+	return iio_write_attr(d->dir, name, value);
 }
 
 static uint64_t iio_now_ns(struct ftest_ctx *x)
@@ -523,6 +552,32 @@ static int read_compensation(struct ftest_ctx *x)
 	return 0;
 }
 
+/* The fastest rate the driver offers now, as text into @rate */
+static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
+{
+	struct iio_test_dev *d = x->dev;
+	char val[IIO_ATTR_MAX];
+	long hz;
+	int ret;
+
+	ret = iio_read_attr(d->dir, "sampling_frequency_available", val,
+			    sizeof(val));
+	if (ret < 0)
+		return ftest_io_failed(x, "3-1", "sampling_frequency_available",
+				       ret);
+	ret = iio_parse_rate_max(val, IIO_TEST_RATE_MAX_HZ, &hz);
+	if (ret) {
+		report_add(&x->res->report, "3-1", "sampling_frequency_available",
+			   JUDGMENT_FAIL, NULL, "\"%s\": %s", val,
+			   iio_value_strerror(ret));
+		x->stop = true;
+		return ret;
+	}
+	snprintf(rate, size, "%ld", hz);
+
+	return 0;
+}
+
 /* The buffer as the test uses it: its channels, trigger, length and rate */
 static int buffer_setup(struct ftest_ctx *x)
 {
@@ -530,8 +585,9 @@ static int buffer_setup(struct ftest_ctx *x)
 	char rate[IIO_NAME_MAX];
 	int ret;
 
-	snprintf(rate, sizeof(rate), "%d", IIO_TEST_RATE_HZ);
 	ret = setup_scan(x);
+	if (!ret)
+		ret = fastest_rate(x, rate, sizeof(rate));
 	if (ret)
 		return ret;
 	ret = change_attr(d, "trigger/current_trigger", d->trigger);
@@ -752,23 +808,30 @@ static void iio_finish(struct ftest_ctx *x)
 	for (i = 0; i < d->n_saved; i++) {
 		const struct saved_attr *a = &d->saved[i];
 
+		if (!a->changed)
+			continue;
 		if (iio_write_attr(d->dir, a->name, a->value))
 			fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
 				d->dir, a->name, a->value);
 	}
 }
 
-/* calibbias as found; *@failed names a failure */
+/*
+ * calibbias as found, put back whatever the test does (step 1 writes the
+ * DAC through it); *@failed names a failure
+ */
 static int save_calibration(struct iio_test_dev *d, const char **failed)
 {
+	struct saved_attr *a;
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = save_attr(d, iio_calibbias_attr[axis]);
-		if (ret) {
+		ret = save_attr(d, iio_calibbias_attr[axis], &a);
+		if (ret < 0) {
 			*failed = iio_calibbias_attr[axis];
 			return ret;
 		}
+		a->changed = true;
 	}
 
 	return 0;
