@@ -107,6 +107,7 @@ struct saved_attr {
 /**
  * struct iio_test_dev - the driver-backed test device
  * @dir:	the accelerometer IIO device's sysfs directory
+ * @dfd:	that directory, open (iio_dir_open())
  * @magn:	the magnetometer IIO device's, once step 2 found it
  * @scan_dir:	its scan_elements directory, relative to @dir
  * @chardev:	its character device
@@ -116,10 +117,12 @@ struct saved_attr {
  * @saved:	attributes to put back at the end, in this order
  * @n_saved:	how many
  * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
- * @comp:	what the driver compensates the samples with (step 3)
+ * @comp:	what the driver compensates the samples with: the EEPROM
+ *		and the calibration the last DAC write read back
  */
 struct iio_test_dev {
 	char dir[IIO_PATH_MAX];
+	int dfd;
 	char magn[IIO_PATH_MAX];
 	const char *scan_dir;
 	char chardev[IIO_PATH_MAX];
@@ -153,7 +156,7 @@ static int save_attr(struct iio_test_dev *d, const char *name,
 	s = &d->saved[d->n_saved];
 	if (snprintf(s->name, sizeof(s->name), "%s", name) >= (int)sizeof(s->name))
 		return -ENAMETOOLONG;
-	ret = iio_read_attr(d->dir, name, s->value, sizeof(s->value));
+	ret = iio_read_attr_at(d->dfd, name, s->value, sizeof(s->value));
 	if (ret < 0)
 		return ret;
 	s->changed = false;
@@ -182,7 +185,7 @@ static int change_attr(struct iio_test_dev *d, const char *name,
 		return 0;
 	a->changed = true;
 
-	return iio_write_attr(d->dir, name, value);
+	return iio_write_attr_at(d->dfd, name, value);
 }
 
 static uint64_t iio_now_ns(struct ftest_ctx *x)
@@ -219,7 +222,8 @@ static int iio_failed(struct ftest_ctx *x, const char *step, const char *what,
 
 /*
  * Write the DAC values through calibbias (saved by ftest_run_iio()) and
- * read them back into x->dac
+ * read them back into x->dac; the calibration read back is what the
+ * driver compensates the next samples with
  */
 static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 		   const char *step, bool *same)
@@ -229,7 +233,8 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 	char err[IIO_ERR_LEN];
 	int ret;
 
-	ret = iio_write_dac(d->dir, &x->res->ee, dac, got, err, sizeof(err));
+	ret = iio_write_dac(d->dir, &x->res->ee, dac, got, &d->comp.cal, err,
+			    sizeof(err));
 	if (ret)
 		return iio_failed(x, step, "DAC through calibbias", err, ret);
 	memcpy(x->dac, got, AS9888_AXES);
@@ -480,18 +485,19 @@ static int iio_step2(struct ftest_ctx *x)
 static int setup_scan(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
-	char path[IIO_PATH_MAX], name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
+	char name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
 	unsigned int i;
 	struct dirent *de;
 	DIR *dir;
 	int ret = 0;
 
-	if (snprintf(path, sizeof(path), "%s/%s", d->dir, d->scan_dir) >=
-	    (int)sizeof(path))
-		return ftest_io_failed(x, "3-1", "scan elements", -ENAMETOOLONG);
-	dir = opendir(path);
-	if (!dir)
-		return ftest_io_failed(x, "3-1", "scan elements", -errno);
+	ret = openat(d->dfd, d->scan_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	dir = ret < 0 ? NULL : fdopendir(ret);
+	if (!dir) {
+		ret = -errno;
+		return ftest_io_failed(x, "3-1", "scan elements", ret);
+	}
+	ret = 0;
 	while (!ret && (de = readdir(dir))) {
 		size_t len = strlen(de->d_name);
 
@@ -511,13 +517,13 @@ static int setup_scan(struct ftest_ctx *x)
 		ret = change_attr(d, name, "1");
 		snprintf(name, sizeof(name), "%s/%s_index", d->scan_dir,
 			 scan_channel[i]);
-		if (!ret && iio_read_attr(d->dir, name, val, sizeof(val)) <= 0)
+		if (!ret && iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
 			ret = -EIO;
 		if (!ret && sscanf(val, "%u", &l->index) != 1)
 			ret = -EINVAL;
 		snprintf(name, sizeof(name), "%s/%s_type", d->scan_dir,
 			 scan_channel[i]);
-		if (!ret && iio_read_attr(d->dir, name, val, sizeof(val)) <= 0)
+		if (!ret && iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
 			ret = -EIO;
 		if (!ret)
 			ret = iio_scan_parse_type(val, l);
@@ -533,25 +539,6 @@ static int setup_scan(struct ftest_ctx *x)
 	return 0;
 }
 
-/*
- * What the driver compensates with: the EEPROM, its calibration as it
- * reads now and (per run) the DAC in use
- */
-static int read_compensation(struct ftest_ctx *x)
-{
-	struct iio_test_dev *d = x->dev;
-	char err[IIO_ERR_LEN];
-	int ret;
-
-	d->comp.ee = x->res->ee;
-	ret = iio_read_accel_cal(d->dir, &d->comp.cal, err, sizeof(err));
-	if (ret)
-		return iio_failed(x, "3-1", "driver's calibration readable", err,
-				  ret);
-
-	return 0;
-}
-
 /* The fastest rate the driver offers now, as text into @rate */
 static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 {
@@ -560,8 +547,8 @@ static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 	long hz;
 	int ret;
 
-	ret = iio_read_attr(d->dir, "sampling_frequency_available", val,
-			    sizeof(val));
+	ret = iio_read_attr_at(d->dfd, "sampling_frequency_available", val,
+			       sizeof(val));
 	if (ret < 0)
 		return ftest_io_failed(x, "3-1", "sampling_frequency_available",
 				       ret);
@@ -610,9 +597,7 @@ static int iio_level_setup(struct ftest_ctx *x)
 			  x->o->lpf ? IIO_OVERSAMPLING_ALPF : IIO_OVERSAMPLING_OFF);
 	if (ret)
 		return ftest_io_failed(x, "3-1", IIO_OVERSAMPLING_ATTR, ret);
-	ret = read_compensation(x);
-	if (ret)
-		return ret;
+	d->comp.ee = x->res->ee;
 	ret = find_trigger(d);
 	if (!ftest_judge(x, "3-1.trigger", "data-ready trigger", !ret,
 			 "the driver's INT1 trigger exists",
@@ -695,7 +680,7 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 		return device_taken(x, step, "character device free", "not open elsewhere");
 	if (fd < 0)
 		return ftest_io_failed(x, step, d->chardev, -errno);
-	ret = iio_write_attr(d->dir, "buffer/enable", "1");
+	ret = iio_write_attr_at(d->dfd, "buffer/enable", "1");
 	if (ret) {
 		close(fd);
 		if (ret == -EBUSY)
@@ -704,9 +689,9 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 	}
 	ret = read_samples(x, fd, n, r, why, whylen);
 	if (ret == -ETIMEDOUT &&
-	    iio_read_attr(d->dir, "buffer/enable", val, sizeof(val)) > 0)
+	    iio_read_attr_at(d->dfd, "buffer/enable", val, sizeof(val)) > 0)
 		*taken = !strcmp(val, "0");
-	iio_write_attr(d->dir, "buffer/enable", "0");
+	iio_write_attr_at(d->dfd, "buffer/enable", "0");
 	close(fd);
 
 	return ret;
@@ -722,10 +707,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	bool taken;
 	int ret;
 
-	/* the calibbias changes with the DAC: read what is in effect now */
-	ret = read_compensation(x);
-	if (ret)
-		return ret;
+	/* the calibbias in effect: read back with the last DAC written */
 	memcpy(d->comp.da, x->dac, AS9888_AXES);
 	if (d->sample_bytes > IIO_SCAN_CHANNELS * sizeof(uint32_t))
 		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
@@ -810,7 +792,7 @@ static void iio_finish(struct ftest_ctx *x)
 
 		if (!a->changed)
 			continue;
-		if (iio_write_attr(d->dir, a->name, a->value))
+		if (iio_write_attr_at(d->dfd, a->name, a->value))
 			fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
 				d->dir, a->name, a->value);
 	}
@@ -872,15 +854,19 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	 * The DAC and the calibration are saved before anything changes;
 	 * the rest before its own first change
 	 */
-	ret = save_calibration(d, &failed);
+	d->dfd = iio_dir_open(dir);
+	failed = ".";
+	ret = d->dfd < 0 ? d->dfd : save_calibration(d, &failed);
 	if (ret) {
 		report_add(&res->report, "1-4", "device attributes", JUDGMENT_FAIL,
 			   NULL, "%s/%s: %s", dir, failed, strerror(-ret));
-		free(d);
-		return ret;
+		goto out;
 	}
 	x.dev = d;
 	ret = ftest_engine_run(&x);
+out:
+	if (d->dfd >= 0)
+		close(d->dfd);
 	free(d);
 
 	return ret;
