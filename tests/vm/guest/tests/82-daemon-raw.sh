@@ -97,7 +97,10 @@ check "the report has its duration" awk "BEGIN { exit !($DUR > 0 && $DUR <= $WAL
 # sample's overlapped read: that pair is taken again (overlap_lost), which
 # draws other noise, so level_mean is compared when nothing was lost (a
 # second raw run cannot stand in: the chip's noise generator has moved on).
-$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt \
+# (its own copy of the unit: 80-daemon.sh's /tmp/unit.txt is not there
+# when this file runs without it)
+printf '%s\n' "$U" > $RD/unit.txt
+$CALIBD factory-test --backend sim --sim-clock virtual --unit $RD/unit.txt \
 	--record $RD/sim > /dev/null 2>&1
 for k in dac t_level gravity samples; do
 	eq "raw record's $k = the sim backend's" "$(rec_get $REC $k)" "$(rec_get $RD/sim $k)"
