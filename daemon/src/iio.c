@@ -380,22 +380,37 @@ int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 			char *err, size_t errlen)
 {
-	struct as9888_accel_cal got;
+	struct as9888_accel_cal old, got;
+	char why[IIO_ERR_LEN];
 	int axis, dfd = cal_dir(dir), ret;
 
-	ret = write_cal(dfd, dir, cal, &got, err, errlen);
-	cal_dir_close(dfd);
+	/*
+	 * All or nothing: when a value fails (a bus error in the driver's
+	 * write), the ones written before it go back to what was in effect,
+	 * so that the device never runs on part of a calibration
+	 */
+	ret = read_cal(dfd, dir, &old, err, errlen);
 	if (ret)
-		return ret;
-	for (axis = 0; axis < AS9888_AXES; axis++)
+		goto out;
+	ret = write_cal(dfd, dir, cal, &got, err, errlen);
+	for (axis = 0; !ret && axis < AS9888_AXES; axis++)
 		if (got.bias[axis] != cal->bias[axis]) {
 			snprintf(err, errlen, "%s/%s: wrote %d, reads back %d",
 				 dir, iio_calibbias_attr[axis], cal->bias[axis],
 				 got.bias[axis]);
-			return -EIO;
+			ret = -EIO;
 		}
+	if (ret && write_cal(dfd, dir, &old, &got, why, sizeof(why))) {
+		size_t len = strlen(err);
 
-	return 0;
+		snprintf(err + len, errlen - len,
+			 "; the calibration in effect before could not be put back: %s",
+			 why);
+	}
+out:
+	cal_dir_close(dfd);
+
+	return ret;
 }
 
 int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,

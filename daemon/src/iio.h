@@ -122,7 +122,8 @@ int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 
 /*
  * Write @cal into those attributes and read every value back: 0 when all
- * read back exactly, else -errno with the reason in @err.
+ * read back exactly, else -errno with the reason in @err and the values
+ * in effect before written back (all or nothing).
  */
 int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 			char *err, size_t errlen);
