@@ -61,10 +61,13 @@
 #include "iio_value.h"
 
 /*
- * Data-ready rate during the test: a filtered accelerometer sample takes
- * 4.8 ms plus two bus transfers, so 100 Hz leaves room on a slow bus.
+ * The data-ready rate during the test is the fastest the driver offers
+ * for the accelerometer alone (sampling_frequency_available, read after
+ * the filter is set: 400 Hz without it, 125 Hz with it): the driver
+ * offers only rates whose period holds the measurement, t_PD and the
+ * bus transfers. Rates above this are not taken as a driver's.
  */
-#define IIO_TEST_RATE_HZ	100
+#define IIO_TEST_RATE_MAX_HZ	100000
 /* Buffer length during the test, in samples */
 #define IIO_TEST_BUFFER_LEN	"256"
 /*
@@ -91,14 +94,20 @@ static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
 	"in_accel_x", "in_accel_y", "in_accel_z", "in_temp",
 };
 
+/*
+ * An attribute as found: @changed once the test wrote another value to
+ * it, which finish() then puts back
+ */
 struct saved_attr {
 	char name[IIO_NAME_MAX];
 	char value[IIO_ATTR_MAX];
+	bool changed;
 };
 
 /**
  * struct iio_test_dev - the driver-backed test device
  * @dir:	the accelerometer IIO device's sysfs directory
+ * @dfd:	that directory, open (iio_dir_open())
  * @magn:	the magnetometer IIO device's, once step 2 found it
  * @scan_dir:	its scan_elements directory, relative to @dir
  * @chardev:	its character device
@@ -108,10 +117,12 @@ struct saved_attr {
  * @saved:	attributes to put back at the end, in this order
  * @n_saved:	how many
  * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
- * @comp:	what the driver compensates the samples with (step 3)
+ * @comp:	what the driver compensates the samples with: the EEPROM
+ *		and the calibration the last DAC write read back
  */
 struct iio_test_dev {
 	char dir[IIO_PATH_MAX];
+	int dfd;
 	char magn[IIO_PATH_MAX];
 	const char *scan_dir;
 	char chardev[IIO_PATH_MAX];
@@ -124,36 +135,57 @@ struct iio_test_dev {
 	struct accel_comp comp;
 };
 
-/* Remember @name's value, once, so that finish() can put it back */
-static int save_attr(struct iio_test_dev *d, const char *name)
+/*
+ * Remember @name's value, once; *@a receives its entry. 1 when it was
+ * read now, 0 when it had been saved before, or -errno.
+ */
+static int save_attr(struct iio_test_dev *d, const char *name,
+		     struct saved_attr **a)
 {
-	struct saved_attr *a;
+	struct saved_attr *s;
 	unsigned int i;
 	int ret;
 
 	for (i = 0; i < d->n_saved; i++)
-		if (!strcmp(d->saved[i].name, name))
+		if (!strcmp(d->saved[i].name, name)) {
+			*a = &d->saved[i];
 			return 0;
+		}
 	if (d->n_saved == IIO_SAVED_MAX)
 		return -ENOSPC;
-	a = &d->saved[d->n_saved];
-	if (snprintf(a->name, sizeof(a->name), "%s", name) >= (int)sizeof(a->name))
+	s = &d->saved[d->n_saved];
+	if (snprintf(s->name, sizeof(s->name), "%s", name) >= (int)sizeof(s->name))
 		return -ENAMETOOLONG;
-	ret = iio_read_attr(d->dir, name, a->value, sizeof(a->value));
+	ret = iio_read_attr_at(d->dfd, name, s->value, sizeof(s->value));
 	if (ret < 0)
 		return ret;
+	s->changed = false;
 	d->n_saved++;
+	*a = s;
 
-	return 0;
+	return 1;
 }
 
-/* Save, then write @value to @name */
+/*
+ * Save, then write @value to @name. An attribute that reads @value as it
+ * is saved is left alone (and not put back): each write to the driver's
+ * attributes costs a system call and, for the buffer's, the IIO core's
+ * locks. Once saved, it is always written: another program may have
+ * changed it since (a level run taken again sets the buffer up again).
+ */
 static int change_attr(struct iio_test_dev *d, const char *name,
 		       const char *value)
 {
-	int ret = save_attr(d, name);
+	struct saved_attr *a;
+	int ret = save_attr(d, name, &a);
 
-	return ret ? ret : iio_write_attr(d->dir, name, value);
+	if (ret < 0)
+		return ret;
+	if (ret && !strcmp(a->value, value))
+		return 0;
+	a->changed = true;
+
+	return iio_write_attr_at(d->dfd, name, value);
 }
 
 static uint64_t iio_now_ns(struct ftest_ctx *x)
@@ -190,7 +222,8 @@ static int iio_failed(struct ftest_ctx *x, const char *step, const char *what,
 
 /*
  * Write the DAC values through calibbias (saved by ftest_run_iio()) and
- * read them back into x->dac
+ * read them back into x->dac; the calibration read back is what the
+ * driver compensates the next samples with
  */
 static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 		   const char *step, bool *same)
@@ -200,7 +233,8 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 	char err[IIO_ERR_LEN];
 	int ret;
 
-	ret = iio_write_dac(d->dir, &x->res->ee, dac, got, err, sizeof(err));
+	ret = iio_write_dac(d->dir, &x->res->ee, dac, got, &d->comp.cal, err,
+			    sizeof(err));
 	if (ret)
 		return iio_failed(x, step, "DAC through calibbias", err, ret);
 	memcpy(x->dac, got, AS9888_AXES);
@@ -451,18 +485,19 @@ static int iio_step2(struct ftest_ctx *x)
 static int setup_scan(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
-	char path[IIO_PATH_MAX], name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
+	char name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
 	unsigned int i;
 	struct dirent *de;
 	DIR *dir;
 	int ret = 0;
 
-	if (snprintf(path, sizeof(path), "%s/%s", d->dir, d->scan_dir) >=
-	    (int)sizeof(path))
-		return ftest_io_failed(x, "3-1", "scan elements", -ENAMETOOLONG);
-	dir = opendir(path);
-	if (!dir)
-		return ftest_io_failed(x, "3-1", "scan elements", -errno);
+	ret = openat(d->dfd, d->scan_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	dir = ret < 0 ? NULL : fdopendir(ret);
+	if (!dir) {
+		ret = -errno;
+		return ftest_io_failed(x, "3-1", "scan elements", ret);
+	}
+	ret = 0;
 	while (!ret && (de = readdir(dir))) {
 		size_t len = strlen(de->d_name);
 
@@ -482,13 +517,13 @@ static int setup_scan(struct ftest_ctx *x)
 		ret = change_attr(d, name, "1");
 		snprintf(name, sizeof(name), "%s/%s_index", d->scan_dir,
 			 scan_channel[i]);
-		if (!ret && iio_read_attr(d->dir, name, val, sizeof(val)) <= 0)
+		if (!ret && iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
 			ret = -EIO;
 		if (!ret && sscanf(val, "%u", &l->index) != 1)
 			ret = -EINVAL;
 		snprintf(name, sizeof(name), "%s/%s_type", d->scan_dir,
 			 scan_channel[i]);
-		if (!ret && iio_read_attr(d->dir, name, val, sizeof(val)) <= 0)
+		if (!ret && iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
 			ret = -EIO;
 		if (!ret)
 			ret = iio_scan_parse_type(val, l);
@@ -504,21 +539,28 @@ static int setup_scan(struct ftest_ctx *x)
 	return 0;
 }
 
-/*
- * What the driver compensates with: the EEPROM, its calibration as it
- * reads now and (per run) the DAC in use
- */
-static int read_compensation(struct ftest_ctx *x)
+/* The fastest rate the driver offers now, as text into @rate */
+static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 {
 	struct iio_test_dev *d = x->dev;
-	char err[IIO_ERR_LEN];
+	char val[IIO_ATTR_MAX];
+	long hz;
 	int ret;
 
-	d->comp.ee = x->res->ee;
-	ret = iio_read_accel_cal(d->dir, &d->comp.cal, err, sizeof(err));
-	if (ret)
-		return iio_failed(x, "3-1", "driver's calibration readable", err,
-				  ret);
+	ret = iio_read_attr_at(d->dfd, "sampling_frequency_available", val,
+			       sizeof(val));
+	if (ret < 0)
+		return ftest_io_failed(x, "3-1", "sampling_frequency_available",
+				       ret);
+	ret = iio_parse_rate_max(val, IIO_TEST_RATE_MAX_HZ, &hz);
+	if (ret) {
+		report_add(&x->res->report, "3-1", "sampling_frequency_available",
+			   JUDGMENT_FAIL, NULL, "\"%s\": %s", val,
+			   iio_value_strerror(ret));
+		x->stop = true;
+		return ret;
+	}
+	snprintf(rate, size, "%ld", hz);
 
 	return 0;
 }
@@ -530,8 +572,9 @@ static int buffer_setup(struct ftest_ctx *x)
 	char rate[IIO_NAME_MAX];
 	int ret;
 
-	snprintf(rate, sizeof(rate), "%d", IIO_TEST_RATE_HZ);
 	ret = setup_scan(x);
+	if (!ret)
+		ret = fastest_rate(x, rate, sizeof(rate));
 	if (ret)
 		return ret;
 	ret = change_attr(d, "trigger/current_trigger", d->trigger);
@@ -554,9 +597,7 @@ static int iio_level_setup(struct ftest_ctx *x)
 			  x->o->lpf ? IIO_OVERSAMPLING_ALPF : IIO_OVERSAMPLING_OFF);
 	if (ret)
 		return ftest_io_failed(x, "3-1", IIO_OVERSAMPLING_ATTR, ret);
-	ret = read_compensation(x);
-	if (ret)
-		return ret;
+	d->comp.ee = x->res->ee;
 	ret = find_trigger(d);
 	if (!ftest_judge(x, "3-1.trigger", "data-ready trigger", !ret,
 			 "the driver's INT1 trigger exists",
@@ -639,7 +680,7 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 		return device_taken(x, step, "character device free", "not open elsewhere");
 	if (fd < 0)
 		return ftest_io_failed(x, step, d->chardev, -errno);
-	ret = iio_write_attr(d->dir, "buffer/enable", "1");
+	ret = iio_write_attr_at(d->dfd, "buffer/enable", "1");
 	if (ret) {
 		close(fd);
 		if (ret == -EBUSY)
@@ -648,9 +689,9 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 	}
 	ret = read_samples(x, fd, n, r, why, whylen);
 	if (ret == -ETIMEDOUT &&
-	    iio_read_attr(d->dir, "buffer/enable", val, sizeof(val)) > 0)
+	    iio_read_attr_at(d->dfd, "buffer/enable", val, sizeof(val)) > 0)
 		*taken = !strcmp(val, "0");
-	iio_write_attr(d->dir, "buffer/enable", "0");
+	iio_write_attr_at(d->dfd, "buffer/enable", "0");
 	close(fd);
 
 	return ret;
@@ -666,10 +707,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	bool taken;
 	int ret;
 
-	/* the calibbias changes with the DAC: read what is in effect now */
-	ret = read_compensation(x);
-	if (ret)
-		return ret;
+	/* the calibbias in effect: read back with the last DAC written */
 	memcpy(d->comp.da, x->dac, AS9888_AXES);
 	if (d->sample_bytes > IIO_SCAN_CHANNELS * sizeof(uint32_t))
 		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
@@ -752,23 +790,30 @@ static void iio_finish(struct ftest_ctx *x)
 	for (i = 0; i < d->n_saved; i++) {
 		const struct saved_attr *a = &d->saved[i];
 
-		if (iio_write_attr(d->dir, a->name, a->value))
+		if (!a->changed)
+			continue;
+		if (iio_write_attr_at(d->dfd, a->name, a->value))
 			fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
 				d->dir, a->name, a->value);
 	}
 }
 
-/* calibbias as found; *@failed names a failure */
+/*
+ * calibbias as found, put back whatever the test does (step 1 writes the
+ * DAC through it); *@failed names a failure
+ */
 static int save_calibration(struct iio_test_dev *d, const char **failed)
 {
+	struct saved_attr *a;
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = save_attr(d, iio_calibbias_attr[axis]);
-		if (ret) {
+		ret = save_attr(d, iio_calibbias_attr[axis], &a);
+		if (ret < 0) {
 			*failed = iio_calibbias_attr[axis];
 			return ret;
 		}
+		a->changed = true;
 	}
 
 	return 0;
@@ -809,15 +854,19 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	 * The DAC and the calibration are saved before anything changes;
 	 * the rest before its own first change
 	 */
-	ret = save_calibration(d, &failed);
+	d->dfd = iio_dir_open(dir);
+	failed = ".";
+	ret = d->dfd < 0 ? d->dfd : save_calibration(d, &failed);
 	if (ret) {
 		report_add(&res->report, "1-4", "device attributes", JUDGMENT_FAIL,
 			   NULL, "%s/%s: %s", dir, failed, strerror(-ret));
-		free(d);
-		return ret;
+		goto out;
 	}
 	x.dev = d;
 	ret = ftest_engine_run(&x);
+out:
+	if (d->dfd >= 0)
+		close(d->dfd);
 	free(d);
 
 	return ret;

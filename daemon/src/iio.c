@@ -37,14 +37,28 @@ const char *iio_debugfs_root(void)
 	return root_from_env("AS9888_DEBUGFS", "/sys/kernel/debug");
 }
 
+int iio_dir_open(const char *dir)
+{
+	int fd = open(dir, O_PATH | O_DIRECTORY | O_CLOEXEC);
+
+	return fd < 0 ? -errno : fd;
+}
+
 int iio_read_attr(const char *dir, const char *name, char *buf, size_t size)
 {
 	char path[IIO_PATH_MAX];
+
+	snprintf(path, sizeof(path), "%s/%s", dir, name);
+
+	return iio_read_attr_at(AT_FDCWD, path, buf, size);
+}
+
+int iio_read_attr_at(int dfd, const char *name, char *buf, size_t size)
+{
 	ssize_t n;
 	int fd;
 
-	snprintf(path, sizeof(path), "%s/%s", dir, name);
-	fd = open(path, O_RDONLY | O_CLOEXEC);
+	fd = openat(dfd, name, O_RDONLY | O_CLOEXEC);
 	if (fd < 0)
 		return -errno;
 	n = read(fd, buf, size - 1);
@@ -74,13 +88,20 @@ int iio_read_debugfs(const char *dir, const char *name, char *buf,
 int iio_write_attr(const char *dir, const char *name, const char *value)
 {
 	char path[IIO_PATH_MAX];
+
+	snprintf(path, sizeof(path), "%s/%s", dir, name);
+
+	return iio_write_attr_at(AT_FDCWD, path, value);
+}
+
+int iio_write_attr_at(int dfd, const char *name, const char *value)
+{
 	size_t len = strlen(value);
 	ssize_t n;
 	int fd;
 
-	snprintf(path, sizeof(path), "%s/%s", dir, name);
 	/* as a shell's "echo >": sysfs ignores O_TRUNC, a plain file needs it */
-	fd = open(path, O_WRONLY | O_TRUNC | O_CLOEXEC);
+	fd = openat(dfd, name, O_WRONLY | O_TRUNC | O_CLOEXEC);
 	if (fd < 0)
 		return -errno;
 	n = write(fd, value, len);
@@ -235,13 +256,20 @@ int iio_apply_checked(const char *dir, const struct calib_record *rec,
 }
 
 /*
+ * The helpers below reach @name below @dir through @dfd, @dir opened
+ * (iio_dir_open()), or by its path when @dfd < 0; @dir names it in
+ * messages
+ */
+
+/*
  * @name below @dir as text into @buf: 0, or -errno with the attribute and
  * the reason in @err
  */
-static int read_text(const char *dir, const char *name, char *buf,
+static int read_text(int dfd, const char *dir, const char *name, char *buf,
 		     size_t size, char *err, size_t errlen)
 {
-	int ret = iio_read_attr(dir, name, buf, size);
+	int ret = dfd < 0 ? iio_read_attr(dir, name, buf, size) :
+		  iio_read_attr_at(dfd, name, buf, size);
 
 	if (ret < 0)
 		snprintf(err, errlen, "%s/%s: cannot read: %s", dir, name,
@@ -251,13 +279,13 @@ static int read_text(const char *dir, const char *name, char *buf,
 }
 
 /* @name holds a decimal integer within @min..@max */
-static int read_number(const char *dir, const char *name, long min, long max,
-		       long *v, char *err, size_t errlen)
+static int read_number(int dfd, const char *dir, const char *name, long min,
+		       long max, long *v, char *err, size_t errlen)
 {
 	char val[IIO_ATTR_MAX];
 	int ret;
 
-	ret = read_text(dir, name, val, sizeof(val), err, errlen);
+	ret = read_text(dfd, dir, name, val, sizeof(val), err, errlen);
 	if (ret)
 		return ret;
 	ret = iio_int_parse(val, min, max, v);
@@ -268,10 +296,11 @@ static int read_number(const char *dir, const char *name, long min, long max,
 	return ret;
 }
 
-static int write_text(const char *dir, const char *name, const char *val,
-		      char *err, size_t errlen)
+static int write_text(int dfd, const char *dir, const char *name,
+		      const char *val, char *err, size_t errlen)
 {
-	int ret = iio_write_attr(dir, name, val);
+	int ret = dfd < 0 ? iio_write_attr(dir, name, val) :
+		  iio_write_attr_at(dfd, name, val);
 
 	if (ret)
 		snprintf(err, errlen, "%s/%s: cannot write \"%s\": %s", dir, name,
@@ -280,15 +309,15 @@ static int write_text(const char *dir, const char *name, const char *val,
 	return ret;
 }
 
-int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
-		       char *err, size_t errlen)
+static int read_cal(int dfd, const char *dir, struct as9888_accel_cal *cal,
+		    char *err, size_t errlen)
 {
 	struct as9888_accel_cal c;
 	long v;
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = read_number(dir, iio_calibbias_attr[axis],
+		ret = read_number(dfd, dir, iio_calibbias_attr[axis],
 				  -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX,
 				  &v, err, errlen);
 		if (ret)
@@ -300,39 +329,97 @@ int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 	return 0;
 }
 
-int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
-			char *err, size_t errlen)
+
+/* Write @cal and read it back into @back, through @dfd */
+static int write_cal(int dfd, const char *dir,
+		     const struct as9888_accel_cal *cal,
+		     struct as9888_accel_cal *back, char *err, size_t errlen)
 {
-	struct as9888_accel_cal got;
 	char val[IIO_ATTR_MAX];
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		snprintf(val, sizeof(val), "%d", cal->bias[axis]);
-		ret = write_text(dir, iio_calibbias_attr[axis], val, err, errlen);
+		ret = write_text(dfd, dir, iio_calibbias_attr[axis], val, err,
+				 errlen);
 		if (ret)
 			return ret;
 	}
-	ret = iio_read_accel_cal(dir, &got, err, errlen);
+
+	return read_cal(dfd, dir, back, err, errlen);
+}
+
+/*
+ * @dir opened for the calibration's attributes, read or written in a row,
+ * each resolving the attribute's name alone; -1 (by path) when it cannot
+ * be
+ */
+static int cal_dir(const char *dir)
+{
+	int dfd = iio_dir_open(dir);
+
+	return dfd < 0 ? -1 : dfd;
+}
+
+static void cal_dir_close(int dfd)
+{
+	if (dfd >= 0)
+		close(dfd);
+}
+
+int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
+		       char *err, size_t errlen)
+{
+	int dfd = cal_dir(dir), ret;
+
+	ret = read_cal(dfd, dir, cal, err, errlen);
+	cal_dir_close(dfd);
+
+	return ret;
+}
+
+int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
+			char *err, size_t errlen)
+{
+	struct as9888_accel_cal old, got;
+	char why[IIO_ERR_LEN];
+	int axis, dfd = cal_dir(dir), ret;
+
+	/*
+	 * All or nothing: when a value fails (a bus error in the driver's
+	 * write), the ones written before it go back to what was in effect,
+	 * so that the device never runs on part of a calibration
+	 */
+	ret = read_cal(dfd, dir, &old, err, errlen);
 	if (ret)
-		return ret;
-	for (axis = 0; axis < AS9888_AXES; axis++)
+		goto out;
+	ret = write_cal(dfd, dir, cal, &got, err, errlen);
+	for (axis = 0; !ret && axis < AS9888_AXES; axis++)
 		if (got.bias[axis] != cal->bias[axis]) {
 			snprintf(err, errlen, "%s/%s: wrote %d, reads back %d",
 				 dir, iio_calibbias_attr[axis], cal->bias[axis],
 				 got.bias[axis]);
-			return -EIO;
+			ret = -EIO;
 		}
+	if (ret && write_cal(dfd, dir, &old, &got, why, sizeof(why))) {
+		size_t len = strlen(err);
 
-	return 0;
+		snprintf(err + len, errlen - len,
+			 "; the calibration in effect before could not be put back: %s",
+			 why);
+	}
+out:
+	cal_dir_close(dfd);
+
+	return ret;
 }
 
 int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
 		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
-		  char *err, size_t errlen)
+		  struct as9888_accel_cal *now, char *err, size_t errlen)
 {
 	struct as9888_accel_cal cal, back;
-	int axis, ret;
+	int axis, dfd, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		ret = as9888_dac_bias(&ee->axis[axis], da[axis], &cal.bias[axis]);
@@ -344,15 +431,9 @@ int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
 			return ret;
 		}
 	}
-	for (axis = 0; axis < AS9888_AXES; axis++) {
-		char val[IIO_ATTR_MAX];
-
-		snprintf(val, sizeof(val), "%d", cal.bias[axis]);
-		ret = write_text(dir, iio_calibbias_attr[axis], val, err, errlen);
-		if (ret)
-			return ret;
-	}
-	ret = iio_read_accel_cal(dir, &back, err, errlen);
+	dfd = cal_dir(dir);
+	ret = write_cal(dfd, dir, &cal, &back, err, errlen);
+	cal_dir_close(dfd);
 	if (ret)
 		return ret;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
@@ -363,6 +444,7 @@ int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
 		if (as9888_dac2lin(ga, got[axis]) == as9888_dac2lin(ga, da[axis]))
 			got[axis] = da[axis];
 	}
+	*now = back;
 
 	return 0;
 }

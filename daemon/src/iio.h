@@ -78,6 +78,16 @@ int iio_read_attr(const char *dir, const char *name, char *buf, size_t size);
 int iio_write_attr(const char *dir, const char *name, const char *value);
 
 /*
+ * The same below a directory opened once with iio_dir_open() (an O_PATH
+ * descriptor, or -errno): each access then resolves @name alone, not the
+ * directory's path through its bus link again, which costs most of an
+ * access to a sysfs attribute on a slow system
+ */
+int iio_dir_open(const char *dir);
+int iio_read_attr_at(int dfd, const char *name, char *buf, size_t size);
+int iio_write_attr_at(int dfd, const char *name, const char *value);
+
+/*
  * The driver's debugfs file @name of the device at @dir
  * (<debugfs>/iio/iio:deviceN/@name), read like iio_read_attr(). @path
  * receives the file's path, for messages.
@@ -94,12 +104,13 @@ int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN]);
 /*
  * Run the chip with the DAC register values @da: write the calibbias
  * values whose DAC they are (as9888_dac_bias()) and read them back; @got
- * receives the DAC values of what reads back (as9888_bias_dac()). 0, or
- * -errno with the attribute and the reason in @err.
+ * receives the DAC values of what reads back (as9888_bias_dac()) and
+ * @now the calibration read back, the one in effect. 0, or -errno with
+ * the attribute and the reason in @err.
  */
 int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
 		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
-		  char *err, size_t errlen);
+		  struct as9888_accel_cal *now, char *err, size_t errlen);
 
 /*
  * The driver's calibration: in_accel_{x,y,z}_calibbias, integers within
@@ -111,7 +122,8 @@ int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 
 /*
  * Write @cal into those attributes and read every value back: 0 when all
- * read back exactly, else -errno with the reason in @err.
+ * read back exactly, else -errno with the reason in @err and the values
+ * in effect before written back (all or nothing).
  */
 int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 			char *err, size_t errlen);

@@ -129,3 +129,29 @@ int iio_parse_selftest_readings(const char *s, int32_t adj_q8[AS9888_AXES])
 
 	return 0;
 }
+
+int iio_parse_rate_max(const char *s, long max, long *hz)
+{
+	long best = 0;
+	int64_t v;
+	int ret;
+
+	for (;;) {
+		const char *end;
+
+		/* each rate but the last ends at a space */
+		ret = parse_decimal(s, 0, strchr(s, ' ') ? ' ' : '\0', &v, &end);
+		if (ret)
+			return ret;
+		if (v < 1 || v > max)
+			return -ERANGE;
+		if (v > best)
+			best = (long)v;
+		if (!*end)
+			break;
+		s = end + 1;
+	}
+	*hz = best;
+
+	return 0;
+}

@@ -38,4 +38,12 @@ int iio_parse_selftest_verdict(const char *s, enum iio_selftest_verdict *v);
  */
 int iio_parse_selftest_readings(const char *s, int32_t adj_q8[AS9888_AXES]);
 
+/*
+ * sampling_frequency_available of the data-ready trigger's rates, whole
+ * hertz separated by single spaces ("1 2 5 ... 400"): the fastest, within
+ * 1..@max. 0, -EINVAL (malformed, empty, a fraction) or -ERANGE (a rate
+ * outside 1..@max); *@hz is left untouched on error.
+ */
+int iio_parse_rate_max(const char *s, long max, long *hz);
+
 #endif

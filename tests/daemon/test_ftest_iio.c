@@ -101,6 +101,7 @@ static int setup(void **state)
 		fake_put(dir, name, scan_types[i][2]);
 	}
 	put_initial(f);
+	fake_put(f->dev, "sampling_frequency_available", "1 2 5 10 20 25 50 100 125\n");
 
 	return 0;
 }
@@ -279,6 +280,65 @@ static void attributes_put_back(void **state)
 	ftest_result_free(&res);
 }
 
+/* @name's modification time set long ago, and whether it is still that */
+static void set_old(const struct fake_sysfs *f, const char *name)
+{
+	const struct timespec old[2] = { { .tv_sec = 946684800 },
+					 { .tv_sec = 946684800 } };
+	char path[1024];
+
+	snprintf(path, sizeof(path), "%s/%s", f->dev, name);
+	assert_int_equal(utimensat(AT_FDCWD, path, old, 0), 0);
+}
+
+static bool still_old(const struct fake_sysfs *f, const char *name)
+{
+	char path[1024];
+	struct stat st;
+
+	snprintf(path, sizeof(path), "%s/%s", f->dev, name);
+	assert_int_equal(stat(path, &st), 0);
+
+	return st.st_mtim.tv_sec == 946684800;
+}
+
+/*
+ * The buffer set up as the test wants it already (its trigger, length and
+ * the fastest rate offered, 125 Hz in this tree): those attributes are
+ * neither written nor put back
+ */
+static void set_up_attributes_untouched(void **state)
+{
+	static const char *const as_wanted[][2] = {
+		{ "trigger/current_trigger", "as9888-dev0\n" },
+		{ "buffer/length", "256\n" },
+		{ "sampling_frequency", "125\n" },
+		{ "in_accel_oversampling_ratio", "4\n" },
+	};
+	const struct fake_sysfs *f = *state;
+	struct ftest_result res;
+	size_t i;
+
+	if (!access("/dev/iio:device0", F_OK))
+		skip();
+	put_initial(f);
+	for (i = 0; i < sizeof(as_wanted) / sizeof(as_wanted[0]); i++) {
+		fake_put(f->dev, as_wanted[i][0], as_wanted[i][1]);
+		set_old(f, as_wanted[i][0]);
+	}
+	set_old(f, SCAN "/in_accel_x_en");
+	run(f, &res);
+	assert_string_equal(report_first_failure(&res.report)->step, "3-3");
+	for (i = 0; i < sizeof(as_wanted) / sizeof(as_wanted[0]); i++)
+		if (!still_old(f, as_wanted[i][0]))
+			fail_msg("%s written, though it read what the test wants",
+				 as_wanted[i][0]);
+	/* one the test changes is written, and put back */
+	assert_false(still_old(f, SCAN "/in_accel_x_en"));
+	put_initial(f);
+	ftest_result_free(&res);
+}
+
 static void unusable_calibration_stops(void **state)
 {
 	const struct fake_sysfs *f = *state;
@@ -449,6 +509,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(attributes_put_back),
+		cmocka_unit_test(set_up_attributes_untouched),
 		cmocka_unit_test(unusable_calibration_stops),
 		cmocka_unit_test(held_buffer_stops),
 		cmocka_unit_test(selftest_through_magn),

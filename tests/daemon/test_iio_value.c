@@ -141,6 +141,36 @@ static void selftest_readings_refused(void **state)
 	assert_int_equal(adj[2], 7);
 }
 
+static void rate_max(void **state)
+{
+	static const char *const malformed[] = {
+		"", " ", "1 ", " 1", "1  2", "1,2", "1.5", "12.5 400", "x",
+		"1 2 x", "1\t2", "400\n",
+	};
+	static const char *const out_of_range[] = {
+		"0", "1 0 5", "-1", "401", "1 2 99999999999999",
+	};
+	long hz = 77;
+	size_t i;
+
+	assert_int_equal(iio_parse_rate_max("1 2 5 10 20 25 50 100 125 200 250 400",
+					    400, &hz), 0);
+	assert_int_equal(hz, 400);
+	assert_int_equal(iio_parse_rate_max("125", 400, &hz), 0);
+	assert_int_equal(hz, 125);
+	/* the fastest wherever it is in the list */
+	assert_int_equal(iio_parse_rate_max("100 1 50", 400, &hz), 0);
+	assert_int_equal(hz, 100);
+	hz = 77;
+	for (i = 0; i < ARRAY_LEN(malformed); i++)
+		if (iio_parse_rate_max(malformed[i], 400, &hz) != -EINVAL)
+			fail_msg("\"%s\" not refused as malformed", malformed[i]);
+	for (i = 0; i < ARRAY_LEN(out_of_range); i++)
+		if (iio_parse_rate_max(out_of_range[i], 400, &hz) != -ERANGE)
+			fail_msg("\"%s\" not refused as out of range", out_of_range[i]);
+	assert_int_equal(hz, 77);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -150,6 +180,7 @@ int main(void)
 		cmocka_unit_test(selftest_verdict),
 		cmocka_unit_test(selftest_readings),
 		cmocka_unit_test(selftest_readings_refused),
+		cmocka_unit_test(rate_max),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -310,6 +310,35 @@ static void apply_reports_write_failure(void **state)
 	fake_reset_calibration(f);
 }
 
+/*
+ * A value the driver refuses half-way (a bus error on Z): X and Y, written
+ * before it, go back to the calibration in effect before
+ */
+static void apply_all_or_nothing(void **state)
+{
+	struct fake_sysfs *f = *state;
+	struct as9888_accel_cal cal = { .bias = { 100, -200, 300 } };
+	char err[IIO_ERR_LEN], path[1024];
+
+	fake_reset_calibration(f);
+	fake_put(f->dev, "in_accel_x_calibbias", "7\n");
+	fake_put(f->dev, "in_accel_y_calibbias", "-8\n");
+	/*
+	 * Z reads a number but refuses writes, even root's: a read-only
+	 * sysctl (the highest capability number, about 40)
+	 */
+	snprintf(path, sizeof(path), "%s/in_accel_z_calibbias", f->dev);
+	assert_int_equal(unlink(path), 0);
+	assert_int_equal(symlink("/proc/sys/kernel/cap_last_cap", path), 0);
+	assert_int_not_equal(iio_write_accel_cal(f->dev, &cal, err, sizeof(err)), 0);
+	assert_int_equal(unlink(path), 0);
+	expect(f, "in_accel_x_calibbias", "7");
+	expect(f, "in_accel_y_calibbias", "-8");
+	if (!strstr(err, "in_accel_z_calibbias"))
+		fail_msg("unclear: %s", err);
+	fake_reset_calibration(f);
+}
+
 /* The driver's calibration as read: every value checked */
 static void read_calibration(void **state)
 {
@@ -406,6 +435,7 @@ int main(void)
 		cmocka_unit_test(restore_refuses_simulated_record),
 		cmocka_unit_test(apply_refuses_uncomputable_record),
 		cmocka_unit_test(apply_reports_write_failure),
+		cmocka_unit_test(apply_all_or_nothing),
 		cmocka_unit_test(read_calibration),
 		cmocka_unit_test(read_calibration_refuses_bad_values),
 		cmocka_unit_test(debugfs_file),

@@ -209,6 +209,29 @@ rebind() {
 	echo "$_rb_c" > "$_rb_b/unbind" && echo "$_rb_c" > "$_rb_b/bind"
 }
 client() { cut -d' ' -f2 $SIM/bus; }
+# raw_line GPIOINFO NAME: the number of the line AS9888_NAME in a listing
+raw_line() { sed -n "s/^[[:space:]]*line *\([0-9]*\): *\"AS9888_$2\".*/\1/p" "$1"; }
+# raw_find GPIOINFO: where the chip is for --backend raw, by name: the
+# adapter as9888-sim-i2c (BUS), the as9888 client on it (CLIENT, ADDR), the
+# GPIO chip as9888-sim-gpio (GCHIP, its lines listed into GPIOINFO) and its
+# lines RSTN, INT1, INT2; RAW: the daemon's options for all of them
+raw_find() {
+	BUS=""
+	for _rf_n in /sys/bus/i2c/devices/i2c-*/name; do
+		[ "$(cat "$_rf_n")" = as9888-sim-i2c ] && BUS=$(basename "$(dirname "$_rf_n")")
+	done
+	CLIENT=""
+	for _rf_n in "/sys/bus/i2c/devices/${BUS#i2c-}"-*/name; do
+		[ "$(cat "$_rf_n" 2>/dev/null)" = as9888 ] && CLIENT=$(basename "$(dirname "$_rf_n")")
+	done
+	ADDR=0x${CLIENT##*-00}
+	GCHIP=$(gpiodetect | sed -n 's/^\([^ ]*\) \[as9888-sim-gpio\].*/\1/p')
+	gpioinfo "$GCHIP" > "$1" 2>&1
+	RSTN=$(raw_line "$1" RSTN)
+	INT1=$(raw_line "$1" INT1)
+	INT2=$(raw_line "$1" INT2)
+	RAW="--backend raw --i2c-dev /dev/$BUS --i2c-address $ADDR --gpiochip $GCHIP --rstn-line $RSTN --int1-line $INT1 --int2-line $INT2"
+}
 stat_get() { sed -n "s/^$1 //p" $SIM/stats; }
 # integer rounding of a decimal string times 1000 (e.g. "0.125" -> 125)
 milli() {

@@ -48,28 +48,13 @@ mkdir -p $RD
 
 # Where the chip is, by name: the adapter, the client on it, the GPIO chip
 # and its lines
-BUS=""
-for n in /sys/bus/i2c/devices/i2c-*/name; do
-	[ "$(cat "$n")" = as9888-sim-i2c ] && BUS=$(basename "$(dirname "$n")")
-done
-CLIENT=""
-for n in "/sys/bus/i2c/devices/${BUS#i2c-}"-*/name; do
-	[ "$(cat "$n" 2>/dev/null)" = as9888 ] && CLIENT=$(basename "$(dirname "$n")")
-done
-ADDR=0x${CLIENT##*-00}
-GCHIP=$(gpiodetect | sed -n 's/^\([^ ]*\) \[as9888-sim-gpio\].*/\1/p')
-gpioinfo "$GCHIP" > $RD/gpioinfo 2>&1
-line_of() { sed -n "s/^[[:space:]]*line *\([0-9]*\): *\"$1\".*/\1/p" $RD/gpioinfo; }
-RSTN=$(line_of AS9888_RSTN)
-INT1=$(line_of AS9888_INT1)
-INT2=$(line_of AS9888_INT2)
+raw_find $RD/gpioinfo
 diag "i2c: /dev/$BUS, client $CLIENT at $ADDR; gpio: $GCHIP RSTN $RSTN INT1 $INT1 INT2 $INT2"
 check "i2c-dev node of the adapter as9888-sim-i2c" test -c "/dev/$BUS"
 check "the as9888 client on it, address 0x0c..0x0f" \
 	sh -c "echo '$ADDR' | grep -q '^0x0[c-f]\$'"
 check "GPIO chip as9888-sim-gpio with lines AS9888_RSTN/INT1/INT2" \
 	test -n "$GCHIP" -a -n "$RSTN" -a -n "$INT1" -a -n "$INT2"
-RAW="--backend raw --i2c-dev /dev/$BUS --i2c-address $ADDR --gpiochip $GCHIP --rstn-line $RSTN --int1-line $INT1 --int2-line $INT2"
 
 # With the driver bound, i2c-dev refuses the address: a clear message
 $CALIBD factory-test $RAW --record $RD/bound > $RD/bound.log 2>&1
@@ -112,7 +97,10 @@ check "the report has its duration" awk "BEGIN { exit !($DUR > 0 && $DUR <= $WAL
 # sample's overlapped read: that pair is taken again (overlap_lost), which
 # draws other noise, so level_mean is compared when nothing was lost (a
 # second raw run cannot stand in: the chip's noise generator has moved on).
-$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt \
+# (its own copy of the unit: 80-daemon.sh's /tmp/unit.txt is not there
+# when this file runs without it)
+printf '%s\n' "$U" > $RD/unit.txt
+$CALIBD factory-test --backend sim --sim-clock virtual --unit $RD/unit.txt \
 	--record $RD/sim > /dev/null 2>&1
 for k in dac t_level gravity samples; do
 	eq "raw record's $k = the sim backend's" "$(rec_get $REC $k)" "$(rec_get $RD/sim $k)"

@@ -169,6 +169,11 @@ for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
 		eq "$1: passed, attributes as found but for the new calibration" \
 			"$(state | grep -v -e calib)" \
 			"$(echo "$S0" | grep -v -e calib)"
+	elif [ "$GOT" = 4-1 ]; then
+		# nak: the test passed, the NAK fell on applying its record
+		# ("written but not applied"): none of it applied
+		check "$1: 4-1, the record written" test -s /tmp/iio/frec
+		eq "$1: 4-1, not applied: every attribute as found" "$(state)" "$S0"
 	else
 		check_not "$1: no record written" test -e /tmp/iio/frec
 		eq "$1: failed, every attribute as found" "$(state)" "$S0"
