@@ -49,6 +49,8 @@ int cmd_recalibrate(const struct cli_opts *o)
 	if (session_run_test(o, &f, &res))
 		return EXIT_FAILURE;
 
+	/* the accelerometer is recalibrated; the magnetometer's calibration stays */
+	res.rec.magn = old.magn;
 	if (res.have_calibration && !report_first_failure(&res.report))
 		stored = session_store_result(o, &res, true);
 	if (o->json) {

@@ -11,6 +11,7 @@
 
 #include "iio.h"
 #include "iio_value.h"
+#include "magn_iio.h"
 #include "record.h"
 #include "remedy.h"
 
@@ -385,8 +386,10 @@ int iio_apply_record(const char *dir, const struct calib_record *rec)
 	}
 
 	ret = iio_write_accel_cal(dir, &cal, err, sizeof(err));
-	if (ret)
+	if (ret) {
 		fprintf(stderr, "as9888-calibd: %s\n", err);
+		return ret;
+	}
 
-	return ret;
+	return magn_iio_apply(dir, rec);
 }

@@ -121,7 +121,9 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
  * calibration its level test gives (as9888_accel_cal_from_level() with
  * the DAC values the level test ran with, the record's) into calibbias,
  * read back; the driver chooses the DAC from it. Nothing is written when
- * the record gives no calibration. 0 or -errno, said on stderr.
+ * the record gives no calibration. Then the magnetometer's part, on the
+ * magnetometer device beside it (magn_iio_apply()). 0 or -errno, said on
+ * stderr.
  */
 int iio_apply_record(const char *dir, const struct calib_record *rec);
 

@@ -37,6 +37,13 @@ enum record_key {
 	KEY_SAMPLES,
 	KEY_LPF,
 	KEY_SOURCE,
+	KEY_MAGN_HARD_IRON,
+	KEY_MAGN_SOFT_IRON,
+	KEY_MAGN_FIELD,
+	KEY_MAGN_RESIDUAL,
+	KEY_MAGN_COVERAGE,
+	KEY_MAGN_SAMPLES,
+	KEY_MAGN_LEARNED,
 	KEY_CRC32,
 	KEY_COUNT,
 };
@@ -53,8 +60,21 @@ static const char *const key_names[KEY_COUNT] = {
 	[KEY_SAMPLES] = "samples",
 	[KEY_LPF] = "lpf",
 	[KEY_SOURCE] = "source",
+	[KEY_MAGN_HARD_IRON] = "magn_hard_iron",
+	[KEY_MAGN_SOFT_IRON] = "magn_soft_iron",
+	[KEY_MAGN_FIELD] = "magn_field",
+	[KEY_MAGN_RESIDUAL] = "magn_residual",
+	[KEY_MAGN_COVERAGE] = "magn_coverage",
+	[KEY_MAGN_SAMPLES] = "magn_samples",
+	[KEY_MAGN_LEARNED] = "magn_learned",
 	[KEY_CRC32] = "crc32",
 };
+
+/* The keys of the magnetometer section: all of them in format 2, none in 1 */
+static bool is_magn_key(int key)
+{
+	return key >= KEY_MAGN_HARD_IRON && key <= KEY_MAGN_LEARNED;
+}
 
 uint64_t record_fingerprint(const uint8_t eeprom[AS9888_EEPROM_LEN])
 {
@@ -101,6 +121,52 @@ static int fail(char *err, size_t errlen, const char *fmt, ...)
 	return -EINVAL;
 }
 
+int record_magn_validate(const struct calib_magn *m, char *err, size_t errlen)
+{
+	int i, j;
+
+	for (i = 0; i < AS9888_AXES; i++) {
+		if (m->hard_iron_nt[i] > RECORD_MAGN_BIAS_MAX_NT ||
+		    m->hard_iron_nt[i] < -RECORD_MAGN_BIAS_MAX_NT)
+			return fail(err, errlen, "magnetometer hard iron of axis %c is beyond +-1000 uT",
+				    "XYZ"[i]);
+		for (j = 0; j < AS9888_AXES; j++) {
+			int32_t w = m->soft_iron_micro[i][j];
+
+			if (i == j && (w < RECORD_MAGN_DIAG_MIN_MICRO ||
+				       w > RECORD_MAGN_DIAG_MAX_MICRO))
+				return fail(err, errlen, "soft-iron gain %d,%d is outside 0.5..2",
+					    i, j);
+			if (i != j && (w > RECORD_MAGN_CROSS_MAX_MICRO ||
+				       w < -RECORD_MAGN_CROSS_MAX_MICRO))
+				return fail(err, errlen, "soft-iron term %d,%d is beyond +-0.5",
+					    i, j);
+			if (w != m->soft_iron_micro[j][i])
+				return fail(err, errlen, "soft-iron matrix is not symmetric (%d,%d)",
+					    i, j);
+		}
+	}
+	if (m->field_nt < RECORD_MAGN_FIELD_MIN_NT ||
+	    m->field_nt > RECORD_MAGN_FIELD_MAX_NT)
+		return fail(err, errlen, "fitted field %.3f uT is outside the Earth's 20..70 uT",
+			    m->field_nt / 1000.0);
+	if (m->residual_nt < 0 || m->residual_nt > RECORD_MAGN_RESIDUAL_MAX_NT)
+		return fail(err, errlen, "fit residual %.3f uT is outside 0..20 uT",
+			    m->residual_nt / 1000.0);
+	if (m->coverage_milli < 0 || m->coverage_milli > MILLI)
+		return fail(err, errlen, "coverage %.3f is outside 0..1",
+			    m->coverage_milli / 1000.0);
+	if (m->samples < RECORD_MAGN_SAMPLES_MIN ||
+	    m->samples > RECORD_MAGN_SAMPLES_MAX)
+		return fail(err, errlen, "magnetometer sample count %u is outside %d..%d",
+			    m->samples, RECORD_MAGN_SAMPLES_MIN,
+			    RECORD_MAGN_SAMPLES_MAX);
+	if (m->learned < 0)
+		return fail(err, errlen, "magnetometer calibration time is before 1970");
+
+	return 0;
+}
+
 int record_validate(const struct calib_record *rec, char *err, size_t errlen)
 {
 	struct as9888_eeprom ee;
@@ -135,7 +201,7 @@ int record_validate(const struct calib_record *rec, char *err, size_t errlen)
 	if (rec->created < 0)
 		return fail(err, errlen, "creation time is before 1970");
 
-	return 0;
+	return rec->magn.present ? record_magn_validate(&rec->magn, err, errlen) : 0;
 }
 
 /* Print a fixed-point value with @decimals exact decimals */
@@ -164,12 +230,78 @@ static int32_t micro_to_q16(int64_t micro)
 	return (int32_t)((num + (num < 0 ? -MICRO / 2 : MICRO / 2)) / MICRO);
 }
 
+static int format_time(int64_t t, char *buf, size_t size)
+{
+	time_t when = (time_t)t;
+	struct tm tm;
+
+	if (!gmtime_r(&when, &tm) ||
+	    !strftime(buf, size, "%Y-%m-%dT%H:%M:%SZ", &tm))
+		return -EINVAL;
+
+	return 0;
+}
+
+/* snprintf() appended at @len; the new length or -ENOSPC */
+static int append(char *buf, size_t size, size_t len, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
+
+static int append(char *buf, size_t size, size_t len, const char *fmt, ...)
+{
+	va_list ap;
+	int n;
+
+	if (len >= size)
+		return -ENOSPC;
+	va_start(ap, fmt);
+	n = vsnprintf(buf + len, size - len, fmt, ap);
+	va_end(ap);
+	if (n < 0 || (size_t)n >= size - len)
+		return -ENOSPC;
+
+	return (int)(len + (size_t)n);
+}
+
+/* The magnetometer section of format 2, appended at @len */
+static int format_magn(const struct calib_magn *m, char *buf, size_t size,
+		       size_t len)
+{
+	char v[AS9888_AXES * AS9888_AXES][32], learned[32];
+	int i, n;
+
+	if (format_time(m->learned, learned, sizeof(learned)))
+		return -EINVAL;
+	for (i = 0; i < AS9888_AXES; i++)
+		print_fixed(v[i], sizeof(v[i]), m->hard_iron_nt[i], MILLI, 3);
+	n = append(buf, size, len, "magn_hard_iron = %s %s %s\n", v[0], v[1], v[2]);
+	if (n < 0)
+		return n;
+	for (i = 0; i < AS9888_AXES * AS9888_AXES; i++)
+		print_fixed(v[i], sizeof(v[i]),
+			    m->soft_iron_micro[i / AS9888_AXES][i % AS9888_AXES],
+			    MICRO, 6);
+	n = append(buf, size, (size_t)n,
+		   "magn_soft_iron = %s %s %s %s %s %s %s %s %s\n",
+		   v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
+	if (n < 0)
+		return n;
+	print_fixed(v[0], sizeof(v[0]), m->field_nt, MILLI, 3);
+	print_fixed(v[1], sizeof(v[1]), m->residual_nt, MILLI, 3);
+	print_fixed(v[2], sizeof(v[2]), m->coverage_milli, MILLI, 3);
+
+	return append(buf, size, (size_t)n,
+		      "magn_field = %s\n"
+		      "magn_residual = %s\n"
+		      "magn_coverage = %s\n"
+		      "magn_samples = %u\n"
+		      "magn_learned = %s\n",
+		      v[0], v[1], v[2], m->samples, learned);
+}
+
 int record_format(const struct calib_record *rec, char *buf, size_t size)
 {
 	char mean[AS9888_AXES][32], t_level[32], created[32];
 	const uint8_t *e = rec->eeprom;
-	time_t when = (time_t)rec->created;
-	struct tm tm;
 	size_t len;
 	int axis, n;
 
@@ -177,12 +309,11 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 		print_fixed(mean[axis], sizeof(mean[axis]),
 			    q16_to_micro(rec->level_mean_q16[axis]), MICRO, 6);
 	print_fixed(t_level, sizeof(t_level), rec->t_level_mdegc, MILLI, 3);
-	if (!gmtime_r(&when, &tm) ||
-	    !strftime(created, sizeof(created), "%Y-%m-%dT%H:%M:%SZ", &tm))
+	if (format_time(rec->created, created, sizeof(created)))
 		return -EINVAL;
 
 	n = snprintf(buf, size,
-		     "# AS9888 accelerometer calibration, written by as9888-calibd.\n"
+		     "# AS9888 %s calibration, written by as9888-calibd.\n"
 		     "# Do not edit: the crc32 line covers every byte above it.\n"
 		     "format = %s %d\n"
 		     "chip = %016llx\n"
@@ -195,7 +326,10 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 		     "gravity = %d %d %d\n"
 		     "samples = %u\n"
 		     "lpf = %s\n",
-		     RECORD_FORMAT_NAME, RECORD_FORMAT_VERSION,
+		     rec->magn.present ? "accelerometer and magnetometer" :
+		     "accelerometer",
+		     RECORD_FORMAT_NAME, rec->magn.present ? RECORD_FORMAT_MAGN :
+		     RECORD_FORMAT_VERSION,
 		     (unsigned long long)record_fingerprint(e), created,
 		     e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9],
 		     e[10], e[11], e[12], e[13], e[14], e[15], e[16], e[17],
@@ -212,6 +346,12 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 		if (n < 0 || (size_t)n >= size - len)
 			return -ENOSPC;
 		len += (size_t)n;
+	}
+	if (rec->magn.present) {
+		n = format_magn(&rec->magn, buf, size, len);
+		if (n < 0)
+			return n;
+		len = (size_t)n;
 	}
 
 	n = snprintf(buf + len, size - len, "crc32 = %08x\n",
@@ -338,7 +478,7 @@ static bool parse_fixed(struct cursor *c, int decimals, int64_t lo, int64_t hi,
 	return true;
 }
 
-static bool parse_created(struct cursor *c, int64_t *out)
+static bool parse_time(struct cursor *c, int64_t *out)
 {
 	const char *tok;
 	char text[32];
@@ -382,14 +522,69 @@ static bool parse_choice(struct cursor *c, const char *yes, const char *no,
 	return true;
 }
 
+/* @n fixed-point values with @decimals decimals within +-@max into @out */
+static bool parse_fixed_n(struct cursor *c, int n, int decimals, int64_t min,
+			  int64_t max, int32_t *out)
+{
+	int64_t v;
+	int i;
+
+	for (i = 0; i < n; i++) {
+		if (!parse_fixed(c, decimals, min, max, &v))
+			return false;
+		out[i] = (int32_t)v;
+	}
+
+	return true;
+}
+
+/* The magnetometer section's values (ranges: record_magn_validate()) */
+static bool parse_magn_value(enum record_key key, struct cursor *c,
+			     struct calib_magn *m)
+{
+	int64_t v;
+
+	switch (key) {
+	case KEY_MAGN_HARD_IRON:
+		return parse_fixed_n(c, AS9888_AXES, 3, -RECORD_MAGN_BIAS_MAX_NT,
+				     RECORD_MAGN_BIAS_MAX_NT, m->hard_iron_nt);
+	case KEY_MAGN_SOFT_IRON:
+		return parse_fixed_n(c, AS9888_AXES * AS9888_AXES, 6,
+				     -RECORD_MAGN_DIAG_MAX_MICRO,
+				     RECORD_MAGN_DIAG_MAX_MICRO,
+				     &m->soft_iron_micro[0][0]);
+	case KEY_MAGN_FIELD:
+		return parse_fixed_n(c, 1, 3, RECORD_MAGN_FIELD_MIN_NT,
+				     RECORD_MAGN_FIELD_MAX_NT, &m->field_nt);
+	case KEY_MAGN_RESIDUAL:
+		return parse_fixed_n(c, 1, 3, 0, RECORD_MAGN_RESIDUAL_MAX_NT,
+				     &m->residual_nt);
+	case KEY_MAGN_COVERAGE:
+		return parse_fixed_n(c, 1, 3, 0, MILLI, &m->coverage_milli);
+	case KEY_MAGN_SAMPLES:
+		if (!parse_fixed(c, 0, RECORD_MAGN_SAMPLES_MIN,
+				 RECORD_MAGN_SAMPLES_MAX, &v))
+			return false;
+		m->samples = (uint32_t)v;
+		return true;
+	case KEY_MAGN_LEARNED:
+		return parse_time(c, &m->learned);
+	default:
+		return false;
+	}
+}
+
 static bool parse_value(enum record_key key, struct cursor *c,
-			struct calib_record *rec, uint64_t *chip)
+			struct calib_record *rec, uint64_t *chip,
+			int64_t *version)
 {
 	const char *tok;
 	int64_t v;
 	size_t len;
 	int i;
 
+	if (is_magn_key(key))
+		return parse_magn_value(key, c, &rec->magn);
 	switch (key) {
 	case KEY_FORMAT:
 		if (!next_token(c, &tok, &len) ||
@@ -397,11 +592,11 @@ static bool parse_value(enum record_key key, struct cursor *c,
 		    memcmp(tok, RECORD_FORMAT_NAME, len))
 			return false;
 		return parse_fixed(c, 0, RECORD_FORMAT_VERSION,
-				   RECORD_FORMAT_VERSION, &v);
+				   RECORD_FORMAT_MAGN, version);
 	case KEY_CHIP:
 		return parse_hex_u64(c, 16, chip);
 	case KEY_CREATED:
-		return parse_created(c, &rec->created);
+		return parse_time(c, &rec->created);
 	case KEY_EEPROM:
 		for (i = 0; i < AS9888_EEPROM_LEN; i++)
 			if (!parse_hex_byte(c, &rec->eeprom[i]))
@@ -447,7 +642,7 @@ static bool parse_value(enum record_key key, struct cursor *c,
 }
 
 static const char *const value_help[KEY_COUNT] = {
-	[KEY_FORMAT] = "\"" RECORD_FORMAT_NAME " 1\"",
+	[KEY_FORMAT] = "\"" RECORD_FORMAT_NAME " 1\" or \"" RECORD_FORMAT_NAME " 2\"",
 	[KEY_CHIP] = "16 hex digits",
 	[KEY_CREATED] = "YYYY-MM-DDTHH:MM:SSZ",
 	[KEY_EEPROM] = "21 two-digit hex bytes",
@@ -458,6 +653,13 @@ static const char *const value_help[KEY_COUNT] = {
 	[KEY_SAMPLES] = "an integer 10..4096",
 	[KEY_LPF] = "on or off",
 	[KEY_SOURCE] = "simulator or chip",
+	[KEY_MAGN_HARD_IRON] = "3 numbers in uT with 3 decimals within +-1000",
+	[KEY_MAGN_SOFT_IRON] = "9 numbers with 6 decimals within +-2",
+	[KEY_MAGN_FIELD] = "a number in uT with 3 decimals within 20..70",
+	[KEY_MAGN_RESIDUAL] = "a number in uT with 3 decimals within 0..20",
+	[KEY_MAGN_COVERAGE] = "a number with 3 decimals within 0..1",
+	[KEY_MAGN_SAMPLES] = "an integer 10..1000000",
+	[KEY_MAGN_LEARNED] = "YYYY-MM-DDTHH:MM:SSZ",
 	[KEY_CRC32] = "8 hex digits",
 };
 
@@ -467,6 +669,8 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
 	bool seen[KEY_COUNT] = { false };
 	const char *line = text, *end = text + len;
 	uint64_t chip = 0;
+	int64_t version = 0;
+	bool magn_seen = false;
 	uint32_t crc;
 	int lineno = 0, k;
 
@@ -530,17 +734,33 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
 			if (crc != record_crc32(text, (size_t)(line - text)))
 				return fail(err, errlen, "line %d: checksum mismatch: the record is corrupt",
 					    lineno);
-		} else if (!parse_value(key, &c, rec, &chip) || !at_end(&c)) {
+		} else if (!parse_value(key, &c, rec, &chip, &version) ||
+			   !at_end(&c)) {
 			return fail(err, errlen, "line %d: %s must be %s", lineno,
 				    key_names[key], value_help[key]);
 		}
 		line = nl + 1;
 	}
 
-	for (k = 0; k < KEY_COUNT; k++)
+	for (k = 0; k < KEY_COUNT; k++) {
+		if (is_magn_key(k)) {
+			magn_seen |= seen[k];
+			continue;
+		}
 		if (!seen[k] && k != KEY_SOURCE)	/* optional: older records */
 			return fail(err, errlen, "%s is missing%s", key_names[k],
 				    k == KEY_CRC32 ? " (truncated record?)" : "");
+	}
+	/* format 2 has the whole magnetometer section, format 1 none of it */
+	if (version == RECORD_FORMAT_VERSION && magn_seen)
+		return fail(err, errlen, "magn_* keys need format %d, this record is format %d",
+			    RECORD_FORMAT_MAGN, RECORD_FORMAT_VERSION);
+	for (k = KEY_MAGN_HARD_IRON; version == RECORD_FORMAT_MAGN &&
+	     k <= KEY_MAGN_LEARNED; k++)
+		if (!seen[k])
+			return fail(err, errlen, "%s is missing (format %d has the magnetometer's calibration)",
+				    key_names[k], RECORD_FORMAT_MAGN);
+	rec->magn.present = version == RECORD_FORMAT_MAGN;
 	if (chip != record_fingerprint(rec->eeprom))
 		return fail(err, errlen, "chip %016llx does not match the EEPROM data (%016llx)",
 			    (unsigned long long)chip,

@@ -13,9 +13,50 @@
 #include "as9888_calib.h"
 
 #define RECORD_FORMAT_NAME	"as9888-calibration"
+/*
+ * Format 1: the accelerometer only. Format 2: the same keys plus the
+ * magnetometer's (magn_*). A record without a magnetometer calibration is
+ * still written as format 1, byte for byte as before, so that an older
+ * as9888-calibd keeps reading it.
+ */
 #define RECORD_FORMAT_VERSION	1
+#define RECORD_FORMAT_MAGN	2
 /* A record file is a few hundred bytes; anything larger is not one */
 #define RECORD_MAX_SIZE		4096
+
+/* Limits of the magnetometer section (RECORD.md) */
+#define RECORD_MAGN_BIAS_MAX_NT		1000000	/* hard iron: +-1000 uT */
+#define RECORD_MAGN_DIAG_MIN_MICRO	500000	/* W's diagonal: the driver's */
+#define RECORD_MAGN_DIAG_MAX_MICRO	2000000	/* calibscale range 0.5..2 */
+#define RECORD_MAGN_CROSS_MAX_MICRO	500000	/* W's other terms: +-0.5 */
+#define RECORD_MAGN_FIELD_MIN_NT	20000	/* the Earth's field: 20..70 uT */
+#define RECORD_MAGN_FIELD_MAX_NT	70000
+#define RECORD_MAGN_RESIDUAL_MAX_NT	20000
+#define RECORD_MAGN_SAMPLES_MIN		10
+#define RECORD_MAGN_SAMPLES_MAX		1000000
+
+/**
+ * struct calib_magn - the magnetometer's calibration (format 2)
+ * @present:	the record holds one (format 2)
+ * @hard_iron_nt: hard iron b per axis, sensor frame, nT (uT with 3 decimals)
+ * @soft_iron_micro: soft-iron correction W, row-major, 1e-6 units; symmetric.
+ *		The calibrated field is W * (m - b)
+ * @field_nt:	the fitted field magnitude |W * (m - b)|
+ * @residual_nt: rms of |W * (m - b)| - field over the samples used
+ * @coverage_milli: orientation coverage of those samples, 0..1000
+ * @samples:	the number of samples the fit used
+ * @learned:	when it was learned, seconds since the epoch (UTC)
+ */
+struct calib_magn {
+	bool present;
+	int32_t hard_iron_nt[AS9888_AXES];
+	int32_t soft_iron_micro[AS9888_AXES][AS9888_AXES];
+	int32_t field_nt;
+	int32_t residual_nt;
+	int32_t coverage_milli;
+	uint32_t samples;
+	int64_t learned;
+};
 
 /**
  * struct calib_record - the calibration of one chip
@@ -29,6 +70,7 @@
  * @created:	when the record was made, seconds since the epoch (UTC)
  * @simulated:	made on the simulator, not on a chip ("source = simulator");
  *		restore on a real backend refuses it
+ * @magn:	the magnetometer's calibration, when learned (format 2)
  */
 struct calib_record {
 	uint8_t eeprom[AS9888_EEPROM_LEN];
@@ -40,6 +82,7 @@ struct calib_record {
 	bool lpf;
 	int64_t created;
 	bool simulated;
+	struct calib_magn magn;
 };
 
 /* FNV-1a 64 of the EEPROM bytes: the chip identity shown to people */
@@ -63,6 +106,13 @@ int record_format(const struct calib_record *rec, char *buf, size_t size);
  */
 int record_parse(const char *text, size_t len, struct calib_record *rec,
 		 char *err, size_t errlen);
+
+/*
+ * Check the magnetometer section alone (@magn->present set). 0 or -EINVAL
+ * with the reason in @err.
+ */
+int record_magn_validate(const struct calib_magn *magn, char *err,
+			 size_t errlen);
 
 /* Ot_L per axis: A + St(t_L) * G, from the record */
 int record_level_offsets(const struct calib_record *rec,

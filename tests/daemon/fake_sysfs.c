@@ -67,6 +67,27 @@ void fake_reset_calibration(const struct fake_sysfs *f)
 	fake_put(f->dev, "in_accel_z_calibbias", "0\n");
 }
 
+void fake_magn_calibration(const struct fake_sysfs *f, bool present)
+{
+	static const char *const attr[][2] = {
+		{ "calibbias", "0\n" }, { "calibscale", "1.000000\n" },
+	};
+	char name[64], path[1024];
+	int axis, i;
+
+	for (axis = 0; axis < 3; axis++) {
+		for (i = 0; i < 2; i++) {
+			snprintf(name, sizeof(name), "in_magn_%c_%s",
+				 "xyz"[axis], attr[i][0]);
+			snprintf(path, sizeof(path), "%s/%s", f->magn, name);
+			if (present)
+				fake_put(f->magn, name, attr[i][1]);
+			else
+				unlink(path);
+		}
+	}
+}
+
 /* iio:device@n of the bus device 1-000c, named @name, with its bus link */
 static void add_iio_device(const struct fake_sysfs *f, unsigned int n,
 			   const char *name, char *dir, size_t size)

@@ -58,4 +58,12 @@ void fake_magn_present(const struct fake_sysfs *f, bool present);
 /* The driver's calibration after probe: zero offsets at t_RT (23.750 degC) */
 void fake_reset_calibration(const struct fake_sysfs *f);
 
+/*
+ * Give the magnetometer device the calibration attributes of a driver
+ * with the magnetometer calibration (in_magn_<axis>_calibbias 0,
+ * _calibscale 1.000000), or (@present false) take them away, as an older
+ * driver has none
+ */
+void fake_magn_calibration(const struct fake_sysfs *f, bool present);
+
 #endif

@@ -25,6 +25,24 @@ static const u8 example[AS9888_EEPROM_LEN] = {
 	0xe6, 0x9c, 0x0d, 0x8f, 0x8c, 0x04, 0x65, 0xc3, 0x88, 0x50,
 };
 
+/* sample_record() with a magnetometer calibration: a format 2 record */
+static bool with_magn;
+
+static const struct calib_magn sample_magn = {
+	.present = true,
+	.hard_iron_nt = { -123456, 45000, 200125 },
+	.soft_iron_micro = {
+		{ 1020000, 10000, -20000 },
+		{ 10000, 980000, 0 },
+		{ -20000, 0, 1001000 },
+	},
+	.field_nt = 48123,
+	.residual_nt = 412,
+	.coverage_milli = 875,
+	.samples = 300,
+	.learned = 1795392000,	/* 2026-11-23T00:00:00Z */
+};
+
 static void sample_record(struct calib_record *rec)
 {
 	memset(rec, 0, sizeof(*rec));
@@ -40,6 +58,8 @@ static void sample_record(struct calib_record *rec)
 	rec->samples = 16;
 	rec->lpf = true;
 	rec->created = 1795305600;	/* 2026-11-22T00:00:00Z */
+	if (with_magn)
+		rec->magn = sample_magn;
 }
 
 static int format(const struct calib_record *rec, char *buf, size_t size)
@@ -193,7 +213,9 @@ static void source_marked(void **state)
 
 static void fields_validated(void **state)
 {
-	expect_refused("format", "format = as9888-calibration 2", "format must be");
+	expect_refused("format", "format = as9888-calibration 3", "format must be");
+	expect_refused("format", "format = as9888-calibration 2",
+		       "magn_hard_iron is missing (format 2");
 	expect_refused("format", "format = something 1", "format must be");
 	expect_refused("format", NULL, "format is missing");
 	expect_refused("chip", "chip = 0000000000000000", "does not match");
@@ -221,6 +243,129 @@ static void fields_validated(void **state)
 	expect_refused("lpf", "lpf = on\nlpf = off", "given twice");
 	expect_refused("lpf", "lpf = on\nfoo = 1", "unknown key");
 	expect_refused("lpf", "lpf on", "expected \"key = value\"");
+}
+
+/*
+ * The example of RECORD.md, written by the code before format 2: it reads,
+ * and is written back byte for byte (a record without a magnetometer
+ * calibration stays format 1, which older as9888-calibd read)
+ */
+static void format1_unchanged(void **state)
+{
+	static const char old[] =
+		"# AS9888 accelerometer calibration, written by as9888-calibd.\n"
+		"# Do not edit: the crc32 line covers every byte above it.\n"
+		"format = as9888-calibration 1\n"
+		"chip = 676f64b435a720ba\n"
+		"created = 2026-11-22T00:44:53Z\n"
+		"eeprom = 9a 71 15 5c 80 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 50\n"
+		"dac = 0d 8f 8c\n"
+		"level_mean = -0.399994 0.100006 258.100006\n"
+		"t_level = 25.000\n"
+		"gravity = 0 0 -1\n"
+		"samples = 10\n"
+		"lpf = off\n"
+		"crc32 = 81229d28\n";
+	struct calib_record rec;
+	char buf[RECORD_MAX_SIZE], err[256];
+	int len;
+
+	assert_int_equal(record_parse(old, strlen(old), &rec, err, sizeof(err)), 0);
+	assert_false(rec.magn.present);
+	len = format(&rec, buf, sizeof(buf));
+	assert_int_equal(len, (int)strlen(old));
+	assert_memory_equal(buf, old, strlen(old));
+}
+
+/* Format 2: the magnetometer section round-trips and every byte is guarded */
+static void format2_round_trip(void **state)
+{
+	struct calib_record rec, back;
+	char buf[RECORD_MAX_SIZE], err[256];
+	int len, v;
+
+	with_magn = true;
+	sample_record(&rec);
+	len = format(&rec, buf, sizeof(buf));
+	buf[len] = '\0';
+	assert_non_null(strstr(buf, "format = as9888-calibration 2\n"));
+	assert_non_null(strstr(buf, "# AS9888 accelerometer and magnetometer calibration"));
+	assert_non_null(strstr(buf, "\nmagn_hard_iron = -123.456 45.000 200.125\n"
+				    "magn_soft_iron = 1.020000 0.010000 -0.020000 0.010000 0.980000 0.000000 -0.020000 0.000000 1.001000\n"
+				    "magn_field = 48.123\n"
+				    "magn_residual = 0.412\n"
+				    "magn_coverage = 0.875\n"
+				    "magn_samples = 300\n"
+				    "magn_learned = 2026-11-23T00:00:00Z\n"
+				    "crc32 = "));
+	assert_int_equal(record_parse(buf, (size_t)len, &back, err, sizeof(err)), 0);
+	assert_memory_equal(&rec, &back, sizeof(rec));
+	/* negative and extreme values survive the text form */
+	for (v = -1000000; v <= 1000000; v += 99991) {
+		rec.magn.hard_iron_nt[1] = v;
+		rec.magn.soft_iron_micro[0][2] = v / 2;
+		rec.magn.soft_iron_micro[2][0] = v / 2;
+		len = format(&rec, buf, sizeof(buf));
+		assert_int_equal(record_parse(buf, (size_t)len, &back, err,
+					      sizeof(err)), 0);
+		assert_memory_equal(&rec, &back, sizeof(rec));
+	}
+	every_corruption_refused(state);
+	every_truncation_refused(state);
+	with_magn = false;
+}
+
+static void format2_fields_validated(void **state)
+{
+	struct calib_record rec;
+	char err[256];
+
+	with_magn = true;
+	expect_refused("magn_hard_iron", "magn_hard_iron = 1000.001 0.000 0.000",
+		       "magn_hard_iron must be");
+	expect_refused("magn_hard_iron", "magn_hard_iron = 1.0 0.000 0.000",
+		       "magn_hard_iron must be");
+	expect_refused("magn_hard_iron", NULL,
+		       "magn_hard_iron is missing (format 2");
+	expect_refused("magn_soft_iron",
+		       "magn_soft_iron = 1.020000 0.010000 -0.020000 0.011000 0.980000 0.000000 -0.020000 0.000000 1.001000",
+		       "not symmetric");
+	expect_refused("magn_soft_iron",
+		       "magn_soft_iron = 2.020000 0.010000 -0.020000 0.010000 0.980000 0.000000 -0.020000 0.000000 1.001000",
+		       "magn_soft_iron must be");
+	expect_refused("magn_soft_iron",
+		       "magn_soft_iron = 0.490000 0.010000 -0.020000 0.010000 0.980000 0.000000 -0.020000 0.000000 1.001000",
+		       "outside 0.5..2");
+	expect_refused("magn_soft_iron",
+		       "magn_soft_iron = 1.020000 0.600000 -0.020000 0.600000 0.980000 0.000000 -0.020000 0.000000 1.001000",
+		       "beyond +-0.5");
+	expect_refused("magn_soft_iron",
+		       "magn_soft_iron = 1.020000 0.010000 -0.020000 0.010000 0.980000 0.000000 -0.020000 0.000000",
+		       "magn_soft_iron must be");
+	expect_refused("magn_field", "magn_field = 19.999", "magn_field must be");
+	expect_refused("magn_field", "magn_field = 70.001", "magn_field must be");
+	expect_refused("magn_residual", "magn_residual = -0.001", "magn_residual must be");
+	expect_refused("magn_coverage", "magn_coverage = 1.001", "magn_coverage must be");
+	expect_refused("magn_samples", "magn_samples = 9", "magn_samples must be");
+	expect_refused("magn_learned", "magn_learned = now", "magn_learned must be");
+	expect_refused("magn_learned", "magn_learned = 2026-11-23T00:00:00Z\nmagn_samples = 3",
+		       "given twice");
+	/* a format 1 record with (part of) the section is refused */
+	expect_refused("format", "format = as9888-calibration 1",
+		       "magn_* keys need format 2");
+	with_magn = false;
+	expect_refused("lpf", "lpf = off\nmagn_field = 48.000",
+		       "magn_* keys need format 2");
+	/* record_validate() checks the section too */
+	sample_record(&rec);
+	rec.magn = sample_magn;
+	rec.magn.soft_iron_micro[1][1] = 2000001;
+	assert_int_equal(record_validate(&rec, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "soft-iron gain 1,1"));
+	rec.magn = sample_magn;
+	rec.magn.present = false;
+	rec.magn.field_nt = 0;	/* ignored: no section */
+	assert_int_equal(record_validate(&rec, err, sizeof(err)), 0);
 }
 
 /* A record whose EEPROM data is unusable is refused too */
@@ -314,6 +459,9 @@ int main(void)
 		cmocka_unit_test(source_marked),
 		cmocka_unit_test(fields_validated),
 		cmocka_unit_test(eeprom_validated),
+		cmocka_unit_test(format1_unchanged),
+		cmocka_unit_test(format2_round_trip),
+		cmocka_unit_test(format2_fields_validated),
 		cmocka_unit_test(atomic_write_and_read),
 		cmocka_unit_test(symlinks_refused),
 	};
