@@ -32,6 +32,13 @@
 #define KSTE_STEP		350
 /* One mag LSB before adjustment is 300 nT */
 #define MAG_NT_PER_LSB		300
+/* The magnetometer noise and the tumble draw from streams of their own */
+#define MRNG_SALT		0x6d61676e6f697365ULL	/* "magnoise" */
+#define TRNG_SALT		0x74756d626c652121ULL	/* "tumble!!" */
+/* Tumble: the axis wanders by up to 1/4 of a unit per step and axis */
+#define TUMBLE_WANDER_SHIFT	3
+#define MDEG_HALF_TURN		180000
+#define SOFT_LEN		(AS9888_UNIT_AXES * AS9888_UNIT_AXES)
 
 static s64 clamp_s64(s64 v, s64 lo, s64 hi)
 {
@@ -123,6 +130,159 @@ static void sanitize_unit(struct as9888_unit *u)
 	if (u->noise_mlsb > AS9888_UNIT_NOISE_MAX_MLSB)
 		u->noise_mlsb = AS9888_UNIT_NOISE_MAX_MLSB;
 	u->faults &= AS9888_FAULT_ALL;
+	u->earth_nt = unit_clamp(u->earth_nt, 0, AS9888_UNIT_EARTH_MAX_NT);
+	u->incl_mdeg = unit_clamp(u->incl_mdeg, -AS9888_UNIT_INCL_MAX_MDEG,
+				  AS9888_UNIT_INCL_MAX_MDEG);
+	u->decl_mdeg = unit_clamp(u->decl_mdeg, -AS9888_UNIT_DECL_MAX_MDEG,
+				  AS9888_UNIT_DECL_MAX_MDEG);
+	u->heading_mdeg = unit_clamp(u->heading_mdeg,
+				     -AS9888_UNIT_HEADING_MAX_MDEG,
+				     AS9888_UNIT_HEADING_MAX_MDEG);
+	for (i = 0; i < AS9888_UNIT_AXES; i++) {
+		u->hard_nt[i] = unit_clamp(u->hard_nt[i],
+					   -AS9888_UNIT_IRON_MAX_NT,
+					   AS9888_UNIT_IRON_MAX_NT);
+		u->dist_nt[i] = unit_clamp(u->dist_nt[i],
+					   -AS9888_UNIT_IRON_MAX_NT,
+					   AS9888_UNIT_IRON_MAX_NT);
+	}
+	for (i = 0; i < SOFT_LEN; i++)
+		u->soft_ppm[i] = unit_clamp(u->soft_ppm[i],
+					    -AS9888_UNIT_SOFT_MAX,
+					    AS9888_UNIT_SOFT_MAX);
+	if (u->magn_noise_nt > AS9888_UNIT_MNOISE_MAX_NT)
+		u->magn_noise_nt = AS9888_UNIT_MNOISE_MAX_NT;
+	if (u->dist_samples > AS9888_UNIT_DIST_MAX_SAMPLES)
+		u->dist_samples = AS9888_UNIT_DIST_MAX_SAMPLES;
+	if (u->tumble_mdeg > AS9888_UNIT_TUMBLE_MAX_MDEG)
+		u->tumble_mdeg = AS9888_UNIT_TUMBLE_MAX_MDEG;
+}
+
+/* ---- the magnetic world ---- */
+
+static void set_identity(s32 q[AS9888_QUAT_LEN])
+{
+	q[0] = AS9888_Q30_ONE;
+	q[1] = q[2] = q[3] = 0;
+}
+
+/* The orientation from the unit: a quaternion, or up and heading */
+static void orient_from_unit(struct as9888_model *m)
+{
+	s64 v[AS9888_QUAT_LEN];
+	int i;
+
+	if (!(m->unit.world & AS9888_UNIT_WORLD_ORIENTATION)) {
+		as9888_mw_quat_from_up(m->unit.up, m->unit.heading_mdeg,
+				       m->quat);
+		return;
+	}
+	for (i = 0; i < AS9888_QUAT_LEN; i++)
+		v[i] = m->unit.orientation[i];
+	if (as9888_mw_normalise_q30(v, AS9888_QUAT_LEN, m->quat))
+		set_identity(m->quat);
+	as9888_mw_up_from_quat(m->quat, m->unit.up);
+}
+
+/* A uniform Q30 value in [-2^31, 2^31) >> shift */
+static s64 rng_wander(u64 *state, unsigned int shift)
+{
+	s64 r = (s64)(rng_next(state) & 0xffffffffULL) - (1LL << 31);
+
+	return div64_s64(r, 1LL << shift);
+}
+
+static void tumble_axis_init(struct as9888_model *m)
+{
+	s64 v[AS9888_UNIT_AXES];
+	int i;
+
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		v[i] = rng_wander(&m->trng, 0);
+	if (as9888_mw_normalise_q30(v, AS9888_UNIT_AXES, m->omega)) {
+		m->omega[0] = AS9888_Q30_ONE;
+		m->omega[1] = m->omega[2] = 0;
+	}
+}
+
+/* One step of the tumble: the axis wanders, the device turns about it */
+static void tumble_step(struct as9888_model *m)
+{
+	s64 v[AS9888_UNIT_AXES];
+	s32 dq[AS9888_QUAT_LEN];
+	int i;
+
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		v[i] = m->omega[i] + rng_wander(&m->trng, TUMBLE_WANDER_SHIFT);
+	/* a zero sum (cannot happen with a unit axis) keeps the old axis */
+	as9888_mw_normalise_q30(v, AS9888_UNIT_AXES, m->omega);
+	as9888_mw_quat_axis_angle(m->omega, m->unit.tumble_mdeg, dq);
+	as9888_mw_quat_mul(m->quat, dq, m->quat);
+	as9888_mw_up_from_quat(m->quat, m->unit.up);
+}
+
+void as9888_model_field_nt(const struct as9888_model *m,
+			   s64 field[AS9888_UNIT_AXES])
+{
+	s64 world[AS9888_UNIT_AXES];
+	int i;
+
+	if (!(m->unit.world & AS9888_UNIT_WORLD_EARTH)) {
+		for (i = 0; i < AS9888_UNIT_AXES; i++)
+			field[i] = m->unit.field_nt[i];
+		return;
+	}
+	as9888_mw_earth_world_nt(m->unit.earth_nt, m->unit.incl_mdeg,
+				 m->unit.decl_mdeg, world);
+	as9888_mw_to_sensor(m->quat, world, field);
+}
+
+/* The disturbance of this magnetometer measurement, added to @field */
+static void add_disturbance(struct as9888_model *m,
+			    s64 field[AS9888_UNIT_AXES])
+{
+	u32 n = m->unit.dist_samples;
+	s32 s = AS9888_Q30_ONE, c;
+	int i;
+
+	if (n) {
+		if (m->dist_done >= n)
+			return;
+		m->dist_done++;
+		as9888_mw_sincos(div64_s64((s64)MDEG_HALF_TURN * m->dist_done,
+					   (s64)n + 1), &s, &c);
+	}
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		field[i] += div_round_even((s64)m->unit.dist_nt[i] * s,
+					   AS9888_Q30_ONE);
+}
+
+/*
+ * What the magnetometer senses in a measurement, nT: S (B + d) + h +
+ * noise. Noise: Q16 deviate * nT rms.
+ */
+static void magn_sensed_nt(struct as9888_model *m, s64 out[AS9888_UNIT_AXES])
+{
+	const s32 *soft = m->unit.soft_ppm;
+	s64 b[AS9888_UNIT_AXES];
+	int i;
+
+	as9888_model_field_nt(m, b);
+	add_disturbance(m, b);
+	for (i = 0; i < AS9888_UNIT_AXES; i++) {
+		const s32 *row = &soft[i * AS9888_UNIT_AXES];
+
+		out[i] = div_round_even((s64)row[0] * b[0] +
+					(s64)row[1] * b[1] +
+					(s64)row[2] * b[2],
+					AS9888_UNIT_SOFT_ONE) +
+			 m->unit.hard_nt[i];
+	}
+	if (!m->unit.magn_noise_nt)
+		return;
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		out[i] += div_round_even(gauss_q16(&m->mrng) *
+					 m->unit.magn_noise_nt, 65536);
 }
 
 static bool has_fault(const struct as9888_model *m, u32 fault)
@@ -172,6 +332,10 @@ void as9888_model_init(struct as9888_model *m, const struct as9888_unit *unit,
 	m->now_ns = now_ns;
 	m->init_ns = now_ns;
 	m->rng = m->unit.seed;
+	m->mrng = m->unit.seed ^ MRNG_SALT;
+	m->trng = m->unit.seed ^ TRNG_SALT;
+	orient_from_unit(m);
+	tumble_axis_init(m);
 	m->powered = true;
 	m->rstn = true;
 	m->rstn_pin = true;
@@ -282,12 +446,11 @@ static s16 sample_accel(struct as9888_model *m, int axis, s32 t_mdegc,
 	return (s16)clamp_s64(div_round_even(v, NANO), -2048, 2047);
 }
 
-static s16 sample_mag(struct as9888_model *m, int axis, s32 gen_lsb,
-		      bool *ofl)
+static s16 sample_mag(struct as9888_model *m, int axis, s64 sensed_nt,
+		      s32 gen_lsb, bool *ofl)
 {
 	u8 ehc = m->unit.eeprom[4 + axis];
-	s64 num = ((s64)m->unit.field_nt[axis] +
-		   (s64)gen_lsb * MAG_NT_PER_LSB) * 256;
+	s64 num = (sensed_nt + (s64)gen_lsb * MAG_NT_PER_LSB) * 256;
 	s64 raw = div_round_even(num, (s64)MAG_NT_PER_LSB * (ehc + 128));
 
 	if (raw <= -4096 || raw >= 4095)
@@ -303,6 +466,8 @@ static void complete_measurement(struct as9888_model *m, u64 t_ns)
 	bool ofl = false;
 	int i;
 
+	if (m->unit.tumble_mdeg)
+		tumble_step(m);
 	m->tmps = (u8)clamp_s64(div_round_even(220000 - 2 * (s64)t, 1250),
 				0, 255);
 	if (self_test || m->meas_men) {
@@ -311,14 +476,16 @@ static void complete_measurement(struct as9888_model *m, u64 t_ns)
 			AS9888_MODEL_SELFTEST_Y,
 			AS9888_MODEL_SELFTEST_Z,
 		};
+		s64 sensed[AS9888_UNIT_AXES];
 
+		magn_sensed_nt(m, sensed);
 		for (i = 0; i < AS9888_UNIT_AXES; i++) {
 			s32 g = self_test ? gen[i] : 0;
 
 			if (self_test && i == 2 &&
 			    has_fault(m, AS9888_FAULT_SELFTEST_WEAK))
 				g = AS9888_MODEL_SELFTEST_WEAK_Z;
-			m->mag[i] = sample_mag(m, i, g, &ofl);
+			m->mag[i] = sample_mag(m, i, sensed[i], g, &ofl);
 		}
 		if (has_fault(m, AS9888_FAULT_HOFL)) {
 			m->mag[0] = 4095;
@@ -446,6 +613,103 @@ void as9888_model_set_up(struct as9888_model *m, u64 now_ns,
 	as9888_model_advance(m, now_ns);
 	for (i = 0; i < AS9888_UNIT_AXES; i++)
 		m->unit.up[i] = up[i];
+	sanitize_unit(&m->unit);
+	m->unit.world &= ~AS9888_UNIT_WORLD_ORIENTATION;
+	orient_from_unit(m);
+}
+
+void as9888_model_set_heading(struct as9888_model *m, u64 now_ns,
+			      s32 heading_mdeg)
+{
+	as9888_model_advance(m, now_ns);
+	m->unit.heading_mdeg = heading_mdeg;
+	sanitize_unit(&m->unit);
+	m->unit.world &= ~AS9888_UNIT_WORLD_ORIENTATION;
+	orient_from_unit(m);
+}
+
+void as9888_model_set_orientation(struct as9888_model *m, u64 now_ns,
+				  const s32 q[AS9888_QUAT_LEN])
+{
+	int i;
+
+	as9888_model_advance(m, now_ns);
+	if (!q[0] && !q[1] && !q[2] && !q[3])
+		return;
+	for (i = 0; i < AS9888_QUAT_LEN; i++)
+		m->unit.orientation[i] = q[i];
+	m->unit.world |= AS9888_UNIT_WORLD_ORIENTATION;
+	orient_from_unit(m);
+}
+
+void as9888_model_orientation(const struct as9888_model *m,
+			      s32 q[AS9888_QUAT_LEN])
+{
+	int i;
+
+	for (i = 0; i < AS9888_QUAT_LEN; i++)
+		q[i] = m->quat[i];
+}
+
+void as9888_model_set_earth(struct as9888_model *m, u64 now_ns, s32 f_nt,
+			    s32 incl_mdeg, s32 decl_mdeg)
+{
+	as9888_model_advance(m, now_ns);
+	m->unit.earth_nt = f_nt;
+	m->unit.incl_mdeg = incl_mdeg;
+	m->unit.decl_mdeg = decl_mdeg;
+	m->unit.world |= AS9888_UNIT_WORLD_EARTH;
+	sanitize_unit(&m->unit);
+}
+
+void as9888_model_set_hard_iron(struct as9888_model *m, u64 now_ns,
+				const s32 h_nt[AS9888_UNIT_AXES])
+{
+	int i;
+
+	as9888_model_advance(m, now_ns);
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		m->unit.hard_nt[i] = h_nt[i];
+	sanitize_unit(&m->unit);
+}
+
+void as9888_model_set_soft_iron(struct as9888_model *m, u64 now_ns,
+				const s32 s_ppm[SOFT_LEN])
+{
+	int i;
+
+	as9888_model_advance(m, now_ns);
+	for (i = 0; i < SOFT_LEN; i++)
+		m->unit.soft_ppm[i] = s_ppm[i];
+	sanitize_unit(&m->unit);
+}
+
+void as9888_model_set_magn_noise(struct as9888_model *m, u64 now_ns,
+				 u32 noise_nt)
+{
+	as9888_model_advance(m, now_ns);
+	m->unit.magn_noise_nt = noise_nt;
+	sanitize_unit(&m->unit);
+}
+
+void as9888_model_set_disturbance(struct as9888_model *m, u64 now_ns,
+				  const s32 d_nt[AS9888_UNIT_AXES], u32 n)
+{
+	int i;
+
+	as9888_model_advance(m, now_ns);
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		m->unit.dist_nt[i] = d_nt[i];
+	m->unit.dist_samples = n;
+	m->dist_done = 0;
+	sanitize_unit(&m->unit);
+}
+
+void as9888_model_set_tumble(struct as9888_model *m, u64 now_ns,
+			     u32 tumble_mdeg)
+{
+	as9888_model_advance(m, now_ns);
+	m->unit.tumble_mdeg = tumble_mdeg;
 	sanitize_unit(&m->unit);
 }
 

@@ -73,9 +73,28 @@
  *  - I2C failure = -EIO (NAK). SPI has no NAK: a failing SPI transfer
  *    reads 0xff bytes and drops written bytes, and returns 0. Both count
  *    in stats.naks.
- *  - The magnetometer is noiseless; the noise generator draws three
- *    Gaussians per accelerometer measurement (also for faulty axes), so
- *    the same seed and the same command sequence give the same samples.
+ *  - The noise generator draws three Gaussians per accelerometer
+ *    measurement (also for faulty axes), so the same seed and the same
+ *    command sequence give the same samples. The magnetometer's noise
+ *    (magn_noise, default 0: noiseless) and the tumble have generators of
+ *    their own, seeded from the same seed: they leave the accelerometer's
+ *    samples as they were.
+ *  - The magnetic world (as9888_unit.h, as9888_magworld.h): every
+ *    magnetometer measurement (also self-test) reads S (B + d) + h +
+ *    noise, B the external field in the sensor frame at its completion, d
+ *    the disturbance, S the soft iron, h the hard iron. The self-test
+ *    generator is added after (it is inside the chip). The magnetometer
+ *    has no temperature coefficient (the datasheet gives none).
+ *  - Orientation: the accelerometer's up and the field's rotation come
+ *    from one orientation. Given as "up" (+ "heading") the accelerometer
+ *    uses "up" exactly as given; given as "orientation", or moved by the
+ *    tumble, "up" is derived from it.
+ *  - Tumble: every measurement (accelerometer or magnetometer) first turns
+ *    the device by tumble degrees about an axis fixed in the sensor frame
+ *    that itself wanders a little at every step (a random walk): smooth,
+ *    seeded, natural motion, not a uniform sphere.
+ *  - Disturbance: counts magnetometer measurements from the instant it is
+ *    set (unit or setter); the k-th of n adds d sin(180 deg k / (n + 1)).
  */
 #ifndef AS9888_MODEL_H
 #define AS9888_MODEL_H
@@ -84,6 +103,7 @@
 #include <linux/kernel.h>
 #include <linux/types.h>
 
+#include "as9888_magworld.h"
 #include "as9888_unit.h"
 
 #ifndef U64_MAX
@@ -179,6 +199,11 @@ struct as9888_model {
 	u64 now_ns;			/* latest time seen */
 	u64 init_ns;			/* power-on time (temperature drift) */
 	u64 rng;			/* noise generator state */
+	u64 mrng;			/* magnetometer noise generator */
+	u64 trng;			/* tumble generator */
+	s32 quat[AS9888_QUAT_LEN];	/* orientation, Q30, sensor to world */
+	s32 omega[AS9888_UNIT_AXES];	/* tumble axis, Q30, sensor frame */
+	u32 dist_done;			/* disturbance measurements so far */
 
 	/* supply, reset pin and boot */
 	bool powered;			/* supply on */
@@ -253,6 +278,43 @@ void as9888_model_set_up(struct as9888_model *m, u64 now_ns,
 /* Accelerometer noise, milli-LSB rms with ALPF = 0. */
 void as9888_model_set_noise(struct as9888_model *m, u64 now_ns,
 			    u32 noise_mlsb);
+
+/*
+ * The magnetic world, live (see as9888_unit.h for the units and ranges;
+ * values are clamped as in as9888_model_init()). set_up() and
+ * set_heading() give the orientation as (up, heading), set_orientation()
+ * as a quaternion of any scale (a zero one is ignored). set_disturbance()
+ * starts a passing magnet now.
+ */
+void as9888_model_set_heading(struct as9888_model *m, u64 now_ns,
+			      s32 heading_mdeg);
+void as9888_model_set_orientation(struct as9888_model *m, u64 now_ns,
+				  const s32 q[AS9888_QUAT_LEN]);
+void as9888_model_set_earth(struct as9888_model *m, u64 now_ns, s32 f_nt,
+			    s32 incl_mdeg, s32 decl_mdeg);
+void as9888_model_set_hard_iron(struct as9888_model *m, u64 now_ns,
+				const s32 h_nt[AS9888_UNIT_AXES]);
+void as9888_model_set_soft_iron(struct as9888_model *m, u64 now_ns,
+				const s32 s_ppm[AS9888_UNIT_AXES *
+						AS9888_UNIT_AXES]);
+void as9888_model_set_magn_noise(struct as9888_model *m, u64 now_ns,
+				 u32 noise_nt);
+void as9888_model_set_disturbance(struct as9888_model *m, u64 now_ns,
+				  const s32 d_nt[AS9888_UNIT_AXES], u32 n);
+void as9888_model_set_tumble(struct as9888_model *m, u64 now_ns,
+			     u32 tumble_mdeg);
+
+/* The orientation now (Q30 unit quaternion, sensor to world). */
+void as9888_model_orientation(const struct as9888_model *m,
+			      s32 q[AS9888_QUAT_LEN]);
+
+/*
+ * The external field in the sensor frame now, nT: the Earth's turned by
+ * the orientation (or the unit's fixed field), without disturbance, iron
+ * or noise. The truth a calibration should recover. For tests and benches.
+ */
+void as9888_model_field_nt(const struct as9888_model *m,
+			   s64 field[AS9888_UNIT_AXES]);
 
 /* Drive RSTN (true = high). */
 void as9888_model_set_rstn(struct as9888_model *m, u64 now_ns, bool level);

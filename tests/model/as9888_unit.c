@@ -35,6 +35,9 @@ void as9888_unit_default(struct as9888_unit *u)
 	u->field_nt[0] = 20000;
 	u->field_nt[1] = -5000;
 	u->field_nt[2] = -40000;
+	u->orientation[0] = AS9888_UNIT_UP_ONE;
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		u->soft_ppm[i * (AS9888_UNIT_AXES + 1)] = AS9888_UNIT_SOFT_ONE;
 }
 
 const char *as9888_fault_name(u32 fault_bit)
@@ -47,7 +50,7 @@ const char *as9888_fault_name(u32 fault_bit)
 	return NULL;
 }
 
-static u64 isqrt_u64(u64 x)
+u64 as9888_unit_isqrt(u64 x)
 {
 	u64 r = 0, bit = 1ULL << 62;
 
@@ -78,7 +81,7 @@ int as9888_unit_normalise(const s32 in[AS9888_UNIT_AXES],
 	}
 	if (!sq)
 		return -EINVAL;
-	norm = isqrt_u64(sq);
+	norm = as9888_unit_isqrt(sq);
 	/* round the root to nearest: norm^2 <= sq < (norm + 1)^2 */
 	if (sq - norm * norm > norm)
 		norm++;
@@ -387,13 +390,161 @@ static int parse_faults(struct parse_state *ps, struct cursor *val, u32 *out)
 
 enum unit_key {
 	KEY_EEPROM, KEY_OFFSET, KEY_UP, KEY_TEMPERATURE, KEY_DRIFT, KEY_NOISE,
-	KEY_FIELD, KEY_SEED, KEY_FAULT, KEY_COUNT,
+	KEY_FIELD, KEY_SEED, KEY_FAULT, KEY_EARTH, KEY_HEADING,
+	KEY_ORIENTATION, KEY_HARD_IRON, KEY_SOFT_IRON, KEY_MAGN_NOISE,
+	KEY_DISTURBANCE, KEY_TUMBLE, KEY_COUNT,
 };
 
 static const char *const key_names[KEY_COUNT] = {
 	"eeprom", "offset", "up", "temperature", "temperature_drift",
-	"noise", "field", "seed", "fault",
+	"noise", "field", "seed", "fault", "earth", "heading", "orientation",
+	"hard_iron", "soft_iron", "magn_noise", "disturbance", "tumble",
 };
+
+/* Keys that cannot be combined: each pair names one conflict */
+static const u8 key_conflicts[][2] = {
+	{ KEY_ORIENTATION, KEY_UP },
+	{ KEY_ORIENTATION, KEY_HEADING },
+	{ KEY_EARTH, KEY_FIELD },
+};
+
+/* One value in [lo, hi], @decimals places, into @out */
+static int parse_ranged(struct parse_state *ps, struct cursor *val,
+			int decimals, s64 lo, s64 hi, const char *what,
+			s64 *out)
+{
+	s64 max = hi > -lo ? hi : -lo;
+	int ret = parse_vector(ps, val, 1, decimals, max, what, out);
+
+	if (ret)
+		return ret;
+	if (*out < lo || *out > hi)
+		return fail(ps, what, NULL, " out of range");
+	return 0;
+}
+
+/* "F I D": magnitude, inclination, declination */
+static int parse_earth(struct parse_state *ps, struct cursor *val,
+		       struct as9888_unit *u)
+{
+	s64 v[AS9888_UNIT_AXES];
+	int ret;
+
+	ret = parse_vector(ps, val, 3, 3, AS9888_UNIT_EARTH_MAX_NT, "earth",
+			   v);
+	if (ret)
+		return ret;
+	if (v[0] < 0 || v[0] > AS9888_UNIT_EARTH_MAX_NT)
+		return fail(ps, "earth: magnitude", NULL,
+			    " out of range (0..200 uT)");
+	if (v[1] < -AS9888_UNIT_INCL_MAX_MDEG ||
+	    v[1] > AS9888_UNIT_INCL_MAX_MDEG)
+		return fail(ps, "earth: inclination", NULL,
+			    " out of range (-90..90)");
+	if (v[2] < -AS9888_UNIT_DECL_MAX_MDEG ||
+	    v[2] > AS9888_UNIT_DECL_MAX_MDEG)
+		return fail(ps, "earth: declination", NULL,
+			    " out of range (-180..180)");
+	u->earth_nt = (s32)v[0];
+	u->incl_mdeg = (s32)v[1];
+	u->decl_mdeg = (s32)v[2];
+	u->world |= AS9888_UNIT_WORLD_EARTH;
+	return 0;
+}
+
+static int parse_orientation(struct parse_state *ps, struct cursor *val,
+			     struct as9888_unit *u)
+{
+	s64 v[4];
+	int i, ret;
+
+	ret = parse_vector(ps, val, 4, 6, AS9888_UNIT_ORIENT_MAX,
+			   "orientation", v);
+	if (ret)
+		return ret;
+	if (!v[0] && !v[1] && !v[2] && !v[3])
+		return fail(ps, "orientation: zero quaternion", NULL, NULL);
+	for (i = 0; i < 4; i++)
+		u->orientation[i] = (s32)v[i];
+	u->world |= AS9888_UNIT_WORLD_ORIENTATION;
+	return 0;
+}
+
+/* "x y z n": peak field and length of a passing magnet */
+static int parse_disturbance(struct parse_state *ps, struct cursor *val,
+			     struct as9888_unit *u)
+{
+	struct cursor tok;
+	s64 v[AS9888_UNIT_AXES], n;
+	int i, ret;
+
+	for (i = 0; i < AS9888_UNIT_AXES; i++) {
+		if (!next_token(val, &tok))
+			return fail(ps, "disturbance", NULL,
+				    ": too few values");
+		ret = parse_decimal(ps, &tok, 3, AS9888_UNIT_IRON_MAX_NT,
+				    "disturbance", &v[i]);
+		if (ret)
+			return ret;
+	}
+	ret = parse_ranged(ps, val, 0, 0, AS9888_UNIT_DIST_MAX_SAMPLES,
+			   "disturbance: length", &n);
+	if (ret)
+		return ret;
+	for (i = 0; i < AS9888_UNIT_AXES; i++)
+		u->dist_nt[i] = (s32)v[i];
+	u->dist_samples = (u32)n;
+	return 0;
+}
+
+/* The keys of the magnetic world (see as9888_unit.h) */
+static int parse_world(struct parse_state *ps, int key, struct cursor *val,
+		       struct as9888_unit *u)
+{
+	s64 v[AS9888_UNIT_AXES * AS9888_UNIT_AXES];
+	int i, ret;
+
+	switch (key) {
+	case KEY_EARTH:
+		return parse_earth(ps, val, u);
+	case KEY_HEADING:
+		ret = parse_ranged(ps, val, 3, -AS9888_UNIT_HEADING_MAX_MDEG,
+				   AS9888_UNIT_HEADING_MAX_MDEG, "heading", v);
+		if (!ret)
+			u->heading_mdeg = (s32)v[0];
+		return ret;
+	case KEY_ORIENTATION:
+		return parse_orientation(ps, val, u);
+	case KEY_HARD_IRON:
+		ret = parse_vector(ps, val, 3, 3, AS9888_UNIT_IRON_MAX_NT,
+				   "hard_iron", v);
+		for (i = 0; !ret && i < AS9888_UNIT_AXES; i++)
+			u->hard_nt[i] = (s32)v[i];
+		return ret;
+	case KEY_SOFT_IRON:
+		ret = parse_vector(ps, val, 9, 6, AS9888_UNIT_SOFT_MAX,
+				   "soft_iron", v);
+		for (i = 0; !ret && i < 9; i++)
+			u->soft_ppm[i] = (s32)v[i];
+		return ret;
+	case KEY_MAGN_NOISE:
+		ret = parse_ranged(ps, val, 3, 0, AS9888_UNIT_MNOISE_MAX_NT,
+				   "magn_noise", v);
+		if (!ret)
+			u->magn_noise_nt = (u32)v[0];
+		return ret;
+	case KEY_DISTURBANCE:
+		return parse_disturbance(ps, val, u);
+	case KEY_TUMBLE:
+		ret = parse_ranged(ps, val, 3, 0, AS9888_UNIT_TUMBLE_MAX_MDEG,
+				   "tumble", v);
+		if (!ret)
+			u->tumble_mdeg = (u32)v[0];
+		return ret;
+	default:
+		return -EINVAL;
+	}
+}
 
 static int parse_value(struct parse_state *ps, int key, struct cursor *val,
 		       struct as9888_unit *u)
@@ -461,7 +612,7 @@ static int parse_value(struct parse_state *ps, int key, struct cursor *val,
 	case KEY_FAULT:
 		return parse_faults(ps, val, &u->faults);
 	default:
-		return -EINVAL;
+		return parse_world(ps, key, val, u);
 	}
 }
 
@@ -470,6 +621,7 @@ static int parse_line(struct parse_state *ps, const char *p, const char *end,
 {
 	struct cursor key, val;
 	const char *q;
+	unsigned int i;
 	int k;
 
 	/* strip the comment */
@@ -510,6 +662,13 @@ static int parse_line(struct parse_state *ps, const char *p, const char *end,
 	if (*seen & BIT(k))
 		return fail(ps, "duplicate key", &key, NULL);
 	*seen |= BIT(k);
+	for (i = 0; i < ARRAY_SIZE(key_conflicts); i++)
+		if ((*seen & BIT(key_conflicts[i][0])) &&
+		    (*seen & BIT(key_conflicts[i][1])))
+			return fail(ps, key_names[key_conflicts[i][0]], NULL,
+				    key_conflicts[i][1] == KEY_FIELD ?
+				    ": not with 'field'" :
+				    ": not with 'up' or 'heading'");
 	if (val.p == val.end)
 		return fail(ps, "missing value for", &key, NULL);
 	return parse_value(ps, k, &val, u);

@@ -24,6 +24,40 @@
  *   fault             = a, b ...   fault names (or "none"), comma and/or
  *                                  space separated
  *
+ * The magnetic world (tests/model/as9888_magworld.h has the conventions;
+ * docs/DECISIONS.md "Simulated units: magnetic world" the reasons):
+ *
+ *   earth             = F I D      the Earth's field in the world frame:
+ *                                  magnitude uT (0..200), inclination deg
+ *                                  (-90..90, positive down), declination
+ *                                  deg (-180..180, positive east), up to 3
+ *                                  decimals each. The field then turns with
+ *                                  the device; not with "field"
+ *   heading           = h          deg, up to 3 decimals, |h| <= 360: turn
+ *                                  about the world's up after the tilt of
+ *                                  "up" (level: azimuth of the sensor's +Y)
+ *   orientation       = w x y z    sensor-to-world rotation quaternion, any
+ *                                  scale, up to 6 decimals, |v| <= 1000, not
+ *                                  all zero; not with "up" or "heading"
+ *   hard_iron         = x y z      uT, sensor frame, up to 3 decimals,
+ *                                  |v| <= 2000
+ *   soft_iron         = 9 values   3x3 matrix, row major, up to 6 decimals,
+ *                                  |v| <= 2 (default: the identity)
+ *   magn_noise        = n          uT rms per axis, up to 3 decimals, 0..100
+ *   disturbance       = x y z n    a magnet passing by: peak uT in the
+ *                                  sensor frame (up to 3 decimals, |v| <=
+ *                                  2000) over the next n magnetometer
+ *                                  measurements (0..1000000) with a half-sine
+ *                                  profile; n = 0: a constant extra field
+ *   tumble            = d          deg per measurement, up to 3 decimals,
+ *                                  0..90: a seeded random motion through
+ *                                  orientations, one step per measurement
+ *
+ * The magnetometer reads S (B + d) + h + noise: B the external field in
+ * the sensor frame (R(q)^T earth with "earth", else "field" as given), d
+ * the disturbance, S the soft-iron matrix, h the hard iron. With none of
+ * these keys a unit reads "field" exactly as before.
+ *
  * Vector items may be separated by spaces, tabs or commas. More decimal
  * places than the precision are accepted only if they are zeros.
  */
@@ -46,6 +80,21 @@
 #define AS9888_UNIT_DRIFT_MAX_UDEGC_S	100000000
 #define AS9888_UNIT_NOISE_MAX_MLSB	100000
 #define AS9888_UNIT_FIELD_MAX_NT	5000000
+#define AS9888_UNIT_EARTH_MAX_NT	200000
+#define AS9888_UNIT_INCL_MAX_MDEG	90000
+#define AS9888_UNIT_DECL_MAX_MDEG	180000
+#define AS9888_UNIT_HEADING_MAX_MDEG	360000
+#define AS9888_UNIT_ORIENT_MAX		1000000000	/* 1000, 6 decimals */
+#define AS9888_UNIT_IRON_MAX_NT		2000000
+#define AS9888_UNIT_SOFT_ONE		1000000		/* 1.0 */
+#define AS9888_UNIT_SOFT_MAX		2000000
+#define AS9888_UNIT_MNOISE_MAX_NT	100000
+#define AS9888_UNIT_DIST_MAX_SAMPLES	1000000
+#define AS9888_UNIT_TUMBLE_MAX_MDEG	90000
+
+/* struct as9888_unit.world: which parts of the magnetic world are set */
+#define AS9888_UNIT_WORLD_EARTH		BIT(0)	/* "earth" given */
+#define AS9888_UNIT_WORLD_ORIENTATION	BIT(1)	/* "orientation" given */
 
 /* Injected faults, datasheet section 8 */
 enum as9888_fault {
@@ -78,6 +127,19 @@ enum as9888_fault {
  * @field_nt:		ambient magnetic field, nanotesla, X Y Z
  * @seed:		noise generator seed
  * @faults:		enum as9888_fault bits
+ * @world:		AS9888_UNIT_WORLD_* bits
+ * @earth_nt:		Earth's field magnitude, nanotesla
+ * @incl_mdeg:		its inclination, millidegrees (positive down)
+ * @decl_mdeg:		its declination, millidegrees (positive east)
+ * @heading_mdeg:	turn about the world's up after the tilt, millidegrees
+ * @orientation:	sensor-to-world quaternion w x y z, any scale (1e6
+ *			per unit as parsed); used with AS9888_UNIT_WORLD_ORIENTATION
+ * @hard_nt:		hard iron, nanotesla, sensor frame
+ * @soft_ppm:		soft-iron matrix, row major, 1e6 = 1.0
+ * @magn_noise_nt:	magnetometer noise, nanotesla rms per axis
+ * @dist_nt:		disturbance peak, nanotesla, sensor frame
+ * @dist_samples:	its length in magnetometer measurements (0: constant)
+ * @tumble_mdeg:	random motion, millidegrees per measurement (0: still)
  */
 struct as9888_unit {
 	u8 eeprom[AS9888_UNIT_EEPROM_LEN];
@@ -89,6 +151,18 @@ struct as9888_unit {
 	s32 field_nt[AS9888_UNIT_AXES];
 	u64 seed;
 	u32 faults;
+	u32 world;
+	s32 earth_nt;
+	s32 incl_mdeg;
+	s32 decl_mdeg;
+	s32 heading_mdeg;
+	s32 orientation[4];
+	s32 hard_nt[AS9888_UNIT_AXES];
+	s32 soft_ppm[AS9888_UNIT_AXES * AS9888_UNIT_AXES];
+	u32 magn_noise_nt;
+	s32 dist_nt[AS9888_UNIT_AXES];
+	u32 dist_samples;
+	u32 tumble_mdeg;
 };
 
 #define AS9888_UNIT_ERROR_MSG_LEN	96
@@ -124,5 +198,8 @@ const char *as9888_fault_name(u32 fault_bit);
  */
 int as9888_unit_normalise(const s32 in[AS9888_UNIT_AXES],
 			  s32 out[AS9888_UNIT_AXES]);
+
+/* Integer square root, rounded down. */
+u64 as9888_unit_isqrt(u64 x);
 
 #endif /* AS9888_UNIT_H */

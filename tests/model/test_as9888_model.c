@@ -11,6 +11,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -1837,6 +1838,229 @@ static void test_noise_seed_determinism(void **state)
 	assert_memory_not_equal(a, c, sizeof(a));
 }
 
+/* ---- the magnetic world ---- */
+
+#define MEN	AS9888_SLCT2_MEN_MSK
+
+/* A magnetometer reading in uT after the sensitivity adjustment */
+static double mag_ut(const struct as9888_unit *u, const struct sample *s,
+		     int axis)
+{
+	return s->h[axis] * (u->eeprom[4 + axis] + 128) / 256.0 * 0.3;
+}
+
+/* Within half a count (about 0.15 uT) plus @tol of (x, y, z) uT */
+static void expect_mag(const struct as9888_unit *u, const struct sample *s,
+		       double x, double y, double z, double tol)
+{
+	double want[3] = { x, y, z };
+	int i;
+
+	for (i = 0; i < 3; i++)
+		if (fabs(mag_ut(u, s, i) - want[i]) > 0.16 + tol)
+			fail_msg("axis %d: %.3f uT, want %.3f", i,
+				 mag_ut(u, s, i), want[i]);
+}
+
+static struct as9888_unit unit_world(void)
+{
+	struct as9888_unit u = unit_default();
+
+	u.noise_mlsb = 0;
+	u.world = AS9888_UNIT_WORLD_EARTH;
+	u.earth_nt = 50000;
+	u.incl_mdeg = 60000;
+	return u;
+}
+
+/* Level: the field turns with the heading; the accelerometer does not */
+static void test_world_earth_heading(void **state)
+{
+	struct as9888_unit u = unit_world();
+	struct sample s0, s;
+	s64 f[3];
+
+	ready(&u);
+	measure(MEN, &s0);
+	expect_mag(&u, &s0, 0, 25, -43.301, 0);
+	as9888_model_set_heading(&M, T, 90000);
+	measure(MEN, &s);
+	/* +Y points east: north is -X */
+	expect_mag(&u, &s, -25, 0, -43.301, 0);
+	as9888_model_field_nt(&M, f);
+	assert_true(llabs(f[0] + 25000) <= 1 && llabs(f[1]) <= 1);
+	assert_memory_equal(s.a, s0.a, sizeof(s.a));
+	/* declination: magnetic north 10 deg east of true north */
+	as9888_model_set_earth(&M, T, 50000, 60000, 10000);
+	as9888_model_set_heading(&M, T, 10000);
+	measure(MEN, &s);
+	expect_mag(&u, &s, 0, 25, -43.301, 0.001);
+}
+
+/* The sensor's +Y up: the accelerometer reads as with "up = 0 1 0" */
+static void test_world_orientation_moves_accel(void **state)
+{
+	static const s32 q[4] = { 1000000, 1000000, 0, 0 };
+	struct as9888_unit u = unit_world(), v = unit_world();
+	struct sample s, r;
+
+	v.up[1] = 1000000;
+	v.up[2] = 0;
+	ready(&v);
+	measure(0, &r);
+	ready(&u);
+	as9888_model_set_orientation(&M, T, q);
+	assert_int_equal(M.unit.up[1], 1000000);
+	measure(MEN, &s);
+	assert_memory_equal(s.a, r.a, sizeof(s.a));
+	/* world up (the field's -43.3 uT) is now along +Y, north along -Z */
+	expect_mag(&u, &s, 0, -43.301, -25, 0);
+	/* "up" again gives the tilt back and keeps the heading */
+	as9888_model_set_up(&M, T, (s32[3]){ 0, 0, 1000000 });
+	measure(MEN, &s);
+	expect_mag(&u, &s, 0, 25, -43.301, 0);
+}
+
+/* Reads S (B + d) + h: iron applies to the fixed "field" as well */
+static void test_world_iron(void **state)
+{
+	static const s32 soft[9] = { 1050000, 20000, 0, 20000, 950000, -30000,
+				     0, -30000, 1000000 };
+	static const s32 hard[3] = { 100000, -50000, 20000 };
+	struct as9888_unit u = unit_default();
+	struct sample s;
+
+	u.noise_mlsb = 0;
+	ready(&u);
+	as9888_model_set_hard_iron(&M, T, hard);
+	as9888_model_set_soft_iron(&M, T, soft);
+	measure(MEN, &s);
+	/* field (20, -5, -40) */
+	expect_mag(&u, &s, 1.05 * 20 - 0.02 * 5 + 100,
+		   0.02 * 20 - 0.95 * 5 + 0.03 * 40 - 50,
+		   0.03 * 5 - 40 + 20, 0);
+}
+
+/* A passing magnet: a half sine over n measurements, then nothing */
+static void test_world_disturbance(void **state)
+{
+	static const s32 d[3] = { 300000, 0, -100000 };
+	static const double k[5] = { 0.70711, 1, 0.70711, 0, 0 };
+	struct as9888_unit u = unit_default();
+	struct sample s;
+	int i;
+
+	u.noise_mlsb = 0;
+	ready(&u);
+	measure(0, &s);		/* accelerometer only: does not count */
+	as9888_model_set_disturbance(&M, T, d, 3);
+	measure(0, &s);
+	for (i = 0; i < 5; i++) {
+		measure(MEN, &s);
+		expect_mag(&u, &s, 20 + 300 * k[i], -5, -40 - 100 * k[i],
+			   0.001);
+	}
+	/* n = 0: constant */
+	as9888_model_set_disturbance(&M, T, d, 0);
+	for (i = 0; i < 3; i++) {
+		measure(MEN, &s);
+		expect_mag(&u, &s, 320, -5, -140, 0);
+	}
+}
+
+/* Noise of the stated rms; the accelerometer's samples stay the same */
+static void test_world_noise(void **state)
+{
+	struct as9888_unit u = unit_default();
+	static s16 acc[400][3];
+	double sum[3] = { 0 }, sq[3] = { 0 }, rms;
+	struct sample s;
+	int i, j, n = 400;
+
+	ready(&u);
+	for (i = 0; i < n; i++) {
+		measure(MEN, &s);
+		memcpy(acc[i], s.a, sizeof(s.a));
+	}
+	u.magn_noise_nt = 600;
+	ready(&u);
+	for (i = 0; i < n; i++) {
+		measure(MEN, &s);
+		assert_memory_equal(acc[i], s.a, sizeof(s.a));
+		for (j = 0; j < 3; j++) {
+			sum[j] += mag_ut(&u, &s, j);
+			sq[j] += mag_ut(&u, &s, j) * mag_ut(&u, &s, j);
+		}
+	}
+	for (j = 0; j < 3; j++) {
+		rms = sqrt(sq[j] / n - (sum[j] / n) * (sum[j] / n));
+		/* 0.6 uT and the quantisation (0.087 uT): 0.606 */
+		if (rms < 0.54 || rms > 0.68)
+			fail_msg("axis %d: rms %.3f uT", j, rms);
+		assert_true(fabs(sum[j] / n - u.field_nt[j] / 1000.0) < 0.1);
+	}
+}
+
+static double quat_angle_deg(const s32 a[4], const s32 b[4])
+{
+	double dot = 0;
+	int i;
+
+	for (i = 0; i < 4; i++)
+		dot += (double)a[i] / (1 << 30) * b[i] / (1 << 30);
+	return 2 * acos(fmin(1, fabs(dot))) * 180 / M_PI;
+}
+
+/*
+ * Tumble: each measurement turns the device by the set angle; up and the
+ * field follow the orientation; seeded; in time it sees every octant.
+ */
+static void test_world_tumble(void **state)
+{
+	struct as9888_unit u = unit_world();
+	s32 q0[4], q1[4], first[4];
+	unsigned int octants = 0;
+	struct sample s;
+	s64 f[3];
+	int i;
+
+	u.tumble_mdeg = 7000;
+	u.seed = 99;
+	ready(&u);
+	as9888_model_orientation(&M, q0);
+	measure(0, &s);
+	as9888_model_orientation(&M, first);
+	for (i = 0; i < 600; i++) {
+		double fu;
+
+		as9888_model_orientation(&M, q0);
+		measure(i & 1 ? MEN : 0, &s);
+		as9888_model_orientation(&M, q1);
+		assert_true(fabs(quat_angle_deg(q0, q1) - 7) < 0.01);
+		/* the field's component along up is always -F sin I */
+		as9888_model_field_nt(&M, f);
+		fu = ((double)f[0] * M.unit.up[0] + (double)f[1] * M.unit.up[1] +
+		      (double)f[2] * M.unit.up[2]) / 1e6;
+		assert_true(fabs(fu + 43301) < 3);
+		octants |= 1u << ((M.unit.up[0] > 0) | (M.unit.up[1] > 0) << 1 |
+				  (M.unit.up[2] > 0) << 2);
+		if (i & 1)
+			expect_mag(&u, &s, f[0] / 1000.0, f[1] / 1000.0,
+				   f[2] / 1000.0, 0.001);
+	}
+	assert_int_equal(octants, 0xff);
+	/* the same seed, the same motion */
+	ready(&u);
+	measure(0, &s);
+	as9888_model_orientation(&M, q1);
+	assert_memory_equal(q1, first, sizeof(q1));
+	/* stopped: it stays */
+	as9888_model_set_tumble(&M, T, 0);
+	measure(0, &s);
+	as9888_model_orientation(&M, q0);
+	assert_memory_equal(q0, q1, sizeof(q0));
+}
+
 /* ---- faults ---- */
 
 static struct as9888_unit unit_fault(u32 fault)
@@ -2241,6 +2465,12 @@ int main(void)
 		cmocka_unit_test(test_live_temperature),
 		cmocka_unit_test(test_live_up),
 		cmocka_unit_test(test_live_noise),
+		cmocka_unit_test(test_world_earth_heading),
+		cmocka_unit_test(test_world_orientation_moves_accel),
+		cmocka_unit_test(test_world_iron),
+		cmocka_unit_test(test_world_disturbance),
+		cmocka_unit_test(test_world_noise),
+		cmocka_unit_test(test_world_tumble),
 		cmocka_unit_test(test_fault_no_drdy),
 		cmocka_unit_test(test_fault_int1_open),
 		cmocka_unit_test(test_pin_rises_between_looks),

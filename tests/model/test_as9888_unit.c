@@ -333,6 +333,74 @@ static void test_err_non_printable_quoted(void **state)
 	assert_int_equal(parse("bad\n", &u, NULL), -EINVAL);
 }
 
+/* The magnetic world's keys and their defaults */
+static void test_world_keys(void **state)
+{
+	struct as9888_unit u;
+	int i;
+
+	as9888_unit_default(&u);
+	assert_int_equal(u.world, 0);
+	assert_int_equal(u.orientation[0], 1000000);
+	for (i = 0; i < 9; i++)
+		assert_int_equal(u.soft_ppm[i], i % 4 ? 0 : 1000000);
+	parse_ok("earth = 48.5 -60.25 3.125\n"
+		 "heading = -12.5\n"
+		 "hard_iron = 150 -200.5, 0.001\n"
+		 "soft_iron = 1.05 0.02 0  0.02 0.95 -0.05  0 -0.05 1\n"
+		 "magn_noise = 0.6\n"
+		 "disturbance = 300 -20 0.5 25\n"
+		 "tumble = 6.5\n", &u);
+	assert_int_equal(u.world, AS9888_UNIT_WORLD_EARTH);
+	assert_int_equal(u.earth_nt, 48500);
+	assert_int_equal(u.incl_mdeg, -60250);
+	assert_int_equal(u.decl_mdeg, 3125);
+	assert_int_equal(u.heading_mdeg, -12500);
+	assert_int_equal(u.hard_nt[0], 150000);
+	assert_int_equal(u.hard_nt[1], -200500);
+	assert_int_equal(u.hard_nt[2], 1);
+	assert_int_equal(u.soft_ppm[0], 1050000);
+	assert_int_equal(u.soft_ppm[5], -50000);
+	assert_int_equal(u.soft_ppm[8], 1000000);
+	assert_int_equal(u.magn_noise_nt, 600);
+	assert_int_equal(u.dist_nt[0], 300000);
+	assert_int_equal(u.dist_nt[2], 500);
+	assert_int_equal(u.dist_samples, 25);
+	assert_int_equal(u.tumble_mdeg, 6500);
+	parse_ok("orientation = 0.5 0.5 -0.5 0.5\n", &u);
+	assert_int_equal(u.world, AS9888_UNIT_WORLD_ORIENTATION);
+	assert_int_equal(u.orientation[2], -500000);
+	/* the old keys alone leave the world as it was */
+	parse_ok("field = 1 2 3\nup = 0 1 0\n", &u);
+	assert_int_equal(u.world, 0);
+}
+
+static void test_world_errors(void **state)
+{
+	parse_err("up = 0 0 1\norientation = 1 0 0 0\n", 2,
+		  "orientation: not with 'up' or 'heading'");
+	parse_err("orientation = 1 0 0 0\nheading = 3\n", 2,
+		  "orientation: not with 'up' or 'heading'");
+	parse_err("field = 1 2 3\nearth = 50 60 0\n", 2,
+		  "earth: not with 'field'");
+	parse_err("orientation = 0 0 0 0\n", 1, "zero quaternion");
+	parse_err("earth = 201 60 0\n", 1, "out of range");
+	parse_err("earth = -1 60 0\n", 1, "magnitude out of range");
+	parse_err("earth = 50 91 0\n", 1, "inclination out of range");
+	parse_err("earth = 50 60 180.001\n", 1, "declination out of range");
+	parse_err("earth = 50 60\n", 1, "too few values");
+	parse_err("heading = 360.001\n", 1, "out of range");
+	parse_err("hard_iron = 2000.001 0 0\n", 1, "out of range");
+	parse_err("soft_iron = 1 0 0 0 1 0 0 0\n", 1, "too few values");
+	parse_err("soft_iron = 1 0 0 0 1 0 0 0 2.000001\n", 1, "out of range");
+	parse_err("magn_noise = -0.1\n", 1, "out of range");
+	parse_err("disturbance = 1 2 3\n", 1, "too few values");
+	parse_err("disturbance = 1 2 3 1.5\n", 1, "too many decimal places");
+	parse_err("disturbance = 1 2 3 -1\n", 1, "length out of range");
+	parse_err("disturbance = 1 2 3 4 5\n", 1, "too many values");
+	parse_err("tumble = 90.001\n", 1, "out of range");
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -356,6 +424,8 @@ int main(void)
 		cmocka_unit_test(test_err_duplicate),
 		cmocka_unit_test(test_err_structure),
 		cmocka_unit_test(test_err_non_printable_quoted),
+		cmocka_unit_test(test_world_keys),
+		cmocka_unit_test(test_world_errors),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -77,6 +77,19 @@
  *  up		posture, as the unit file's "up" value (three numbers, any
  *		scale, normalised); read: the normalised vector, 6 decimals
  *  noise	accelerometer noise, LSB rms, as the unit file's "noise"
+ * and the magnetic world, each as the unit file's key of the same name
+ * (tests/model/as9888_unit.h):
+ *  heading	deg, the turn about the world's up after the tilt of "up"
+ *  orientation	w x y z, the sensor-to-world quaternion (replaces up and
+ *		heading); read: the orientation now (it moves with tumble)
+ *  earth	F I D: the Earth's field, uT, inclination and declination
+ *		in deg; the field then turns with the orientation
+ *  hard_iron	x y z, uT; soft_iron 9 values, row major
+ *  magn_noise	uT rms per axis
+ *  disturbance	x y z n: a magnet passing by over the next n magnetometer
+ *		measurements, starting now (n = 0: a constant field)
+ *  tumble	deg per measurement of seeded random motion (0 stops it)
+ * "up" reads the posture now (it moves with tumble and orientation).
  */
 
 #include <linux/debugfs.h>
@@ -119,11 +132,20 @@ enum as9888_sim_knob_id {
 	AS9888_SIM_KNOB_TEMPERATURE = 0,
 	AS9888_SIM_KNOB_UP,
 	AS9888_SIM_KNOB_NOISE,
+	AS9888_SIM_KNOB_HEADING,
+	AS9888_SIM_KNOB_ORIENTATION,
+	AS9888_SIM_KNOB_EARTH,
+	AS9888_SIM_KNOB_HARD_IRON,
+	AS9888_SIM_KNOB_SOFT_IRON,
+	AS9888_SIM_KNOB_MAGN_NOISE,
+	AS9888_SIM_KNOB_DISTURBANCE,
+	AS9888_SIM_KNOB_TUMBLE,
 	AS9888_SIM_NKNOBS,
 };
 
 static const char *const as9888_sim_knob_keys[AS9888_SIM_NKNOBS] = {
-	"temperature", "up", "noise",
+	"temperature", "up", "noise", "heading", "orientation", "earth",
+	"hard_iron", "soft_iron", "magn_noise", "disturbance", "tumble",
 };
 
 enum as9888_sim_wiring {
@@ -138,8 +160,8 @@ static const char *const as9888_sim_wiring_names[AS9888_SIM_NWIRINGS] = {
 	"int1", "int1-level", "bad", "int2",
 };
 
-/* Longest value accepted by a knob */
-#define AS9888_SIM_KNOB_MAX	80
+/* Longest value accepted by a knob (soft_iron: nine numbers) */
+#define AS9888_SIM_KNOB_MAX	160
 
 struct as9888_sim;
 
@@ -1224,6 +1246,64 @@ static int as9888_sim_knob_parse(struct as9888_sim_knob *k,
 	return ret;
 }
 
+/*
+ * A knob of the magnetic world: the model takes the value; the unit kept
+ * for a re-instantiated chip follows the model (its orientation too).
+ * Called under @lock.
+ */
+static void as9888_sim_world_write(struct as9888_sim *s,
+				   enum as9888_sim_knob_id id,
+				   const struct as9888_unit *u, u64 now)
+{
+	struct as9888_model *m = &s->model;
+	struct as9888_unit *keep = &s->unit;
+
+	switch (id) {
+	case AS9888_SIM_KNOB_HEADING:
+		as9888_model_set_heading(m, now, u->heading_mdeg);
+		break;
+	case AS9888_SIM_KNOB_ORIENTATION:
+		as9888_model_set_orientation(m, now, u->orientation);
+		break;
+	case AS9888_SIM_KNOB_EARTH:
+		as9888_model_set_earth(m, now, u->earth_nt, u->incl_mdeg,
+				       u->decl_mdeg);
+		break;
+	case AS9888_SIM_KNOB_HARD_IRON:
+		as9888_model_set_hard_iron(m, now, u->hard_nt);
+		break;
+	case AS9888_SIM_KNOB_SOFT_IRON:
+		as9888_model_set_soft_iron(m, now, u->soft_ppm);
+		break;
+	case AS9888_SIM_KNOB_MAGN_NOISE:
+		as9888_model_set_magn_noise(m, now, u->magn_noise_nt);
+		break;
+	case AS9888_SIM_KNOB_DISTURBANCE:
+		as9888_model_set_disturbance(m, now, u->dist_nt,
+					     u->dist_samples);
+		break;
+	case AS9888_SIM_KNOB_TUMBLE:
+		as9888_model_set_tumble(m, now, u->tumble_mdeg);
+		break;
+	default:
+		return;
+	}
+	memcpy(keep->up, m->unit.up, sizeof(keep->up));
+	memcpy(keep->orientation, m->unit.orientation,
+	       sizeof(keep->orientation));
+	memcpy(keep->hard_nt, m->unit.hard_nt, sizeof(keep->hard_nt));
+	memcpy(keep->soft_ppm, m->unit.soft_ppm, sizeof(keep->soft_ppm));
+	memcpy(keep->dist_nt, m->unit.dist_nt, sizeof(keep->dist_nt));
+	keep->world = m->unit.world;
+	keep->heading_mdeg = m->unit.heading_mdeg;
+	keep->earth_nt = m->unit.earth_nt;
+	keep->incl_mdeg = m->unit.incl_mdeg;
+	keep->decl_mdeg = m->unit.decl_mdeg;
+	keep->magn_noise_nt = m->unit.magn_noise_nt;
+	keep->dist_samples = m->unit.dist_samples;
+	keep->tumble_mdeg = m->unit.tumble_mdeg;
+}
+
 static ssize_t as9888_sim_knob_write(struct file *file,
 				     const char __user *ubuf, size_t count,
 				     loff_t *ppos)
@@ -1254,12 +1334,14 @@ static ssize_t as9888_sim_knob_write(struct file *file,
 	case AS9888_SIM_KNOB_UP:
 		as9888_model_set_up(&s->model, now, unit.up);
 		memcpy(s->unit.up, unit.up, sizeof(s->unit.up));
+		s->unit.world &= ~AS9888_UNIT_WORLD_ORIENTATION;
 		break;
 	case AS9888_SIM_KNOB_NOISE:
 		as9888_model_set_noise(&s->model, now, unit.noise_mlsb);
 		s->unit.noise_mlsb = unit.noise_mlsb;
 		break;
 	default:
+		as9888_sim_world_write(s, k->id, &unit, now);
 		break;
 	}
 	/* the setter processed the events due until now: their edges */
@@ -1282,14 +1364,98 @@ static int as9888_sim_put_fixed(char *buf, size_t len, s64 v,
 			 places, frac);
 }
 
+/* @n fixed-point values with @places decimals, space separated */
+static int as9888_sim_put_vec(char *buf, size_t len, const s64 *v, int n,
+			      unsigned int places, u32 one)
+{
+	int pos = 0, i;
+
+	for (i = 0; i < n; i++) {
+		if (i)
+			pos += scnprintf(buf + pos, len - pos, " ");
+		pos += as9888_sim_put_fixed(buf + pos, len - pos, v[i], places,
+					    one);
+	}
+	return pos;
+}
+
+/*
+ * The value of a knob of the posture or the magnetic world, as the model
+ * holds it now (the orientation and up move with the tumble); called
+ * under @cfg_lock.
+ */
+static int as9888_sim_world_read(struct as9888_sim *s,
+				 enum as9888_sim_knob_id id, char *buf,
+				 size_t len)
+{
+	const struct as9888_unit *u = &s->model.unit;
+	s64 v[AS9888_UNIT_AXES * AS9888_UNIT_AXES];
+	s32 q[AS9888_QUAT_LEN];
+	unsigned long flags;
+	int i, pos;
+
+	spin_lock_irqsave(&s->lock, flags);
+	switch (id) {
+	case AS9888_SIM_KNOB_UP:
+		for (i = 0; i < AS9888_UNIT_AXES; i++)
+			v[i] = u->up[i];
+		pos = as9888_sim_put_vec(buf, len, v, 3, 6, AS9888_UNIT_UP_ONE);
+		break;
+	case AS9888_SIM_KNOB_HEADING:
+		pos = as9888_sim_put_fixed(buf, len, u->heading_mdeg, 3, 1000);
+		break;
+	case AS9888_SIM_KNOB_ORIENTATION:
+		as9888_model_orientation(&s->model, q);
+		for (i = 0; i < AS9888_QUAT_LEN; i++)
+			v[i] = div_s64((s64)q[i] * AS9888_UNIT_UP_ONE,
+				       AS9888_Q30_ONE);
+		pos = as9888_sim_put_vec(buf, len, v, 4, 6, AS9888_UNIT_UP_ONE);
+		break;
+	case AS9888_SIM_KNOB_EARTH:
+		v[0] = u->earth_nt;
+		v[1] = u->incl_mdeg;
+		v[2] = u->decl_mdeg;
+		pos = as9888_sim_put_vec(buf, len, v, 3, 3, 1000);
+		break;
+	case AS9888_SIM_KNOB_HARD_IRON:
+		for (i = 0; i < AS9888_UNIT_AXES; i++)
+			v[i] = u->hard_nt[i];
+		pos = as9888_sim_put_vec(buf, len, v, 3, 3, 1000);
+		break;
+	case AS9888_SIM_KNOB_SOFT_IRON:
+		for (i = 0; i < AS9888_UNIT_AXES * AS9888_UNIT_AXES; i++)
+			v[i] = u->soft_ppm[i];
+		pos = as9888_sim_put_vec(buf, len, v, 9, 6,
+					 AS9888_UNIT_SOFT_ONE);
+		break;
+	case AS9888_SIM_KNOB_MAGN_NOISE:
+		pos = as9888_sim_put_fixed(buf, len, u->magn_noise_nt, 3, 1000);
+		break;
+	case AS9888_SIM_KNOB_DISTURBANCE:
+		for (i = 0; i < AS9888_UNIT_AXES; i++)
+			v[i] = u->dist_nt[i];
+		pos = as9888_sim_put_vec(buf, len, v, 3, 3, 1000);
+		pos += scnprintf(buf + pos, len - pos, " %u", u->dist_samples);
+		break;
+	case AS9888_SIM_KNOB_TUMBLE:
+		pos = as9888_sim_put_fixed(buf, len, u->tumble_mdeg, 3, 1000);
+		break;
+	default:
+		pos = 0;
+		break;
+	}
+	spin_unlock_irqrestore(&s->lock, flags);
+	return pos;
+}
+
 static ssize_t as9888_sim_knob_read(struct file *file, char __user *ubuf,
 				    size_t count, loff_t *ppos)
 {
 	struct as9888_sim_knob *k = file->private_data;
 	struct as9888_sim *s = k->s;
 	unsigned long flags;
-	char buf[96];
-	int len = 0, i;
+	char buf[AS9888_SIM_KNOB_MAX + 40];
+	int len = 0;
 	s32 t;
 
 	mutex_lock(&s->cfg_lock);
@@ -1300,20 +1466,12 @@ static ssize_t as9888_sim_knob_read(struct file *file, char __user *ubuf,
 		spin_unlock_irqrestore(&s->lock, flags);
 		len = as9888_sim_put_fixed(buf, sizeof(buf), t, 3, 1000);
 		break;
-	case AS9888_SIM_KNOB_UP:
-		for (i = 0; i < AS9888_UNIT_AXES; i++) {
-			if (i)
-				buf[len++] = ' ';
-			len += as9888_sim_put_fixed(buf + len, sizeof(buf) - len,
-						    s->unit.up[i], 6,
-						    AS9888_UNIT_UP_ONE);
-		}
-		break;
 	case AS9888_SIM_KNOB_NOISE:
 		len = as9888_sim_put_fixed(buf, sizeof(buf), s->unit.noise_mlsb,
 					   3, 1000);
 		break;
 	default:
+		len = as9888_sim_world_read(s, k->id, buf, sizeof(buf));
 		break;
 	}
 	mutex_unlock(&s->cfg_lock);
