@@ -13,11 +13,15 @@
 #  - bad values fail with EINVAL and change nothing;
 #  - the values survive runtime suspend (the supply off) and system sleep,
 #    and start from the defaults on a new bind;
-#  - overflow stays -ERANGE / the rail.
+#  - overflow stays -ERANGE / the rail;
+#  - a board with hard iron and a diagonal soft iron (the model's magnetic
+#    world): the calibbias and calibscale that cancel them make raw x scale
+#    the true field at -20, 25 and 70 degC and in the buffer (and without
+#    them it is not).
 # The unit: the built-in EEPROM (EHC X 0x80, Y 0x85, Z 0x7b), no noise; the
 # magnetometer count of a field f uT is rint(f / 0.3 * 256 / (EHC + 128)).
 # Waits are for stalls only (60 s without the samples waited for).
-plan 57
+plan 64
 load_driver
 load_sim
 set_unit "temperature = 25" "noise = 0" "field = 20 -5 -40"
@@ -26,8 +30,6 @@ T=$(dr_trig)
 O=/tmp/magn-calib
 mkdir -p $O
 
-# mg ATTR: "X Y Z" of in_magn_{x,y,z}_ATTR (an error as its message)
-mg() { echo $(for a in x y z; do cat $MDEV/in_magn_${a}_$1 2>&1; done); }
 # mput ATTR VX VY VZ: write the three values
 mput() {
 	echo "$2" > $MDEV/in_magn_x_$1 && echo "$3" > $MDEV/in_magn_y_$1 &&
@@ -209,3 +211,29 @@ check "rebound" wait_dev 5
 eq "after a new bind: calibbias 0 0 0" "$(mg calibbias)" "0 0 0"
 eq "after a new bind: calibscale 1 1 1" "$(mg calibscale)" "1.000000 1.000000 1.000000"
 eq "after a new bind: raw 67 -16 -136" "$(mg raw)" "67 -16 -136"
+
+# --- a calibrated board: raw x scale is the true field ---------------------------
+# (lib.sh: MAGN_TRUE, the board's hard and soft iron). Two roundings of
+# half an LSB (the count, the calibbias) times up to 1 / 0.93, and the
+# final rint: 0.482 uT at most (Y: 0.306 uT x (1 / 0.93 + 0.5))
+magn_board "noise = 0"
+check "board with hard and soft iron" wait_dev 5
+T=$(dr_trig)
+check_not "uncalibrated: raw x scale is not the true field within 5 uT (the check can fail)" \
+	magn_is_field "$(mg raw)" 5
+WB=$(magn_bias_of "$MAGN_HARD")
+mput calibbias $WB
+mput calibscale $MAGN_CALIBSCALE
+eq "calibbias $WB, calibscale $MAGN_CALIBSCALE written" "$(mg calibbias) $(mg calibscale)" \
+	"$WB $MAGN_CALIBSCALE"
+for t in -20 25 70; do
+	sim_temp $t
+	magn_field_near "calibrated, $t degC: raw x scale is $MAGN_TRUE uT (0.5 uT)" "$(mg raw)" 0.5
+done
+if [ -n "$T" ] && mbuf $O/b6.bin 10; then
+	V=$(one_value $O/b6.bin)
+	magn_field_near "calibrated, 70 degC, buffer: every scan ($V) is the true field (0.5 uT)" "$V" 0.5
+else
+	nok "calibrated board in the buffer: 10 scans (stall: 60 s)"
+fi
+sim_temp 25
