@@ -677,7 +677,7 @@ magn_iron() {
 magn_bias_of() {
 	echo "$1 $(ee_bytes | awk '{ print $5, $6, $7 }')" | awk '{ for (i = 1; i <= 3; i++) {
 		v = -$i * 256 / (0.3 * ($(i + 3) + 128))
-		printf "%s%d", i > 1 ? " " : "", v < 0 ? v - 0.5 : v + 0.5 } }'
+		printf "%s%d", (i > 1 ? " " : ""), v < 0 ? v - 0.5 : v + 0.5 } }'
 }
 # magn_is_field "RX RY RZ" TOL_UT: RAW x in_magn_*_scale (gauss) x 100 is
 # MAGN_TRUE within TOL_UT uT on every axis

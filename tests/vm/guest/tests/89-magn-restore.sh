@@ -35,7 +35,7 @@ calibrated() {
 	echo "$1 $2 $3" | awk '{ for (i = 1; i <= 3; i++) { p = ($i + $(i + 3)) * int($(i + 6) * 1000000 + 0.5)
 		q = p / 1000000; q = q < 0 ? -int(-q) : int(q); if (q * 1000000 > p) q--
 		r = p - q * 1000000; if (r > 500000 || (r == 500000 && q % 2)) q++
-		printf "%s%d", i > 1 ? " " : "", q } }'
+		printf "%s%d", (i > 1 ? " " : ""), q } }'
 }
 # rec2 IN OUT "W (9 numbers)": IN (format 1) with the magnetometer's
 # section for hard iron B and soft iron W, as format 2
