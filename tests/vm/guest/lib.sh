@@ -665,3 +665,55 @@ sp_postures() {
 			"$(awk -v from=$SEEN 'NR > from && /orientation changed/' $O/ms.out)" ""
 	done
 }
+
+# --- the magnetometer's calibration (88-magn-calib, 89-magn-restore) ----------
+# mg ATTR: "X Y Z" of the magn device's in_magn_{x,y,z}_ATTR (an error as
+# its message)
+mg() { echo $(for _mg_a in x y z; do cat $MDEV/in_magn_${_mg_a}_$1 2>&1; done); }
+# magn_board [KEY = VALUE...]: a unit (tests/model/as9888_unit.h; the
+# accelerometer's noise and the like as arguments) with a magnetic world:
+# level, sensor axes on East-North-Up, Earth 48 uT inclined 60 degrees
+# down, declination 30 degrees, so the true field in the sensor frame is
+# 48 * (cos 60 sin 30, cos 60 cos 30, -sin 60) = MAGN_TRUE (uT); hard iron
+# MAGN_HARD and a diagonal soft iron MAGN_SOFT (the chip reads S B + h)
+MAGN_TRUE="12.000 20.785 -41.569"
+MAGN_HARD="150.000 -80.000 60.000"
+MAGN_SOFT="1.08 0 0 0 0.93 0 0 0 1.02"
+# its calibscale, 1 / diag(S) to the micro
+MAGN_CALIBSCALE="0.925926 1.075269 0.980392"
+magn_board() {
+	set_unit "temperature = 25" "orientation = 1 0 0 0" \
+		"earth = 48 60 30" "hard_iron = $MAGN_HARD" "soft_iron = $MAGN_SOFT" "$@"
+}
+# magn_iron on|off: the board's hard and soft iron, live (adapter knobs);
+# off: none. The magnetometer's self-test reads the field too, so a
+# factory test runs with it off (in a low field, as the note asks)
+magn_iron() {
+	if [ "$1" = on ]; then
+		echo "$MAGN_HARD" > $SIM/hard_iron && echo "$MAGN_SOFT" > $SIM/soft_iron
+	else
+		echo "0 0 0" > $SIM/hard_iron && echo "1 0 0 0 1 0 0 0 1" > $SIM/soft_iron
+	fi
+}
+# magn_bias_of "BX BY BZ": rint(-b / s) per axis (b in uT), s the axis' uT
+# per LSB, 0.3 * (EHC + 128) / 256 with the EHC bytes of the chip's EEPROM
+magn_bias_of() {
+	echo "$1 $(ee_bytes | awk '{ print $5, $6, $7 }')" | awk '{ for (i = 1; i <= 3; i++) {
+		v = -$i * 256 / (0.3 * ($(i + 3) + 128))
+		printf "%s%d", (i > 1 ? " " : ""), v < 0 ? v - 0.5 : v + 0.5 } }'
+}
+# magn_is_field "RX RY RZ" TOL_UT: RAW x in_magn_*_scale (gauss) x 100 is
+# MAGN_TRUE within TOL_UT uT on every axis
+magn_is_field() {
+	echo "$1 $(mg scale) $MAGN_TRUE" | awk -v t="$2" '{ if (NF != 9) exit 1
+		for (i = 1; i <= 3; i++) { d = $i * $(i + 3) * 100 - $(i + 6)
+			if (d > t || d < -t) exit 1 } }'
+}
+# magn_field_near NAME "RX RY RZ" TOL_UT: a check of magn_is_field
+magn_field_near() {
+	if magn_is_field "$2" "$3"; then
+		ok "$1"
+	else
+		nok "$1" "raw '$2' x scale '$(mg scale)' is not $MAGN_TRUE uT within $3 uT"
+	fi
+}

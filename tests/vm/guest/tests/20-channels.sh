@@ -77,9 +77,13 @@ eq "as9888-accel: its attributes, no magnetometer, no selftest" "$(attrs $DEV)" 
 		sampling_frequency sampling_frequency_available | sort | tr '\n' ' ')"
 eq "as9888-accel: scan elements accel 0-2, temp 3, timestamp 4" "$(scan $DEV)" \
 	"in_accel_x:0 in_accel_y:1 in_accel_z:2 in_temp:3 in_timestamp:4 "
-eq "as9888-magn: its attributes, selftest, no accelerometer or temperature" "$(attrs $MDEV)" \
+eq "as9888-magn: its attributes, calibration, selftest, no accelerometer or temperature" "$(attrs $MDEV)" \
 	"$(printf '%s\n' in_magn_mount_matrix in_magn_x_raw in_magn_x_scale in_magn_y_raw \
 		in_magn_y_scale in_magn_z_raw in_magn_z_scale sampling_frequency \
+		in_magn_x_calibbias in_magn_x_calibbias_available in_magn_x_calibscale \
+		in_magn_x_calibscale_available in_magn_y_calibbias in_magn_y_calibbias_available \
+		in_magn_y_calibscale in_magn_y_calibscale_available in_magn_z_calibbias \
+		in_magn_z_calibbias_available in_magn_z_calibscale in_magn_z_calibscale_available \
 		sampling_frequency_available selftest | sort | tr '\n' ' ')"
 eq "as9888-magn: scan elements magn 0-2, timestamp 3" "$(scan $MDEV)" \
 	"in_magn_x:0 in_magn_y:1 in_magn_z:2 in_timestamp:3 "

@@ -21,6 +21,16 @@ bad_values() {
 		# integer, 1/1024 g, |v| <= 8192
 		printf '%s\n' "" abc 8193 -8193 9000 1.5 $OVF 4294967297 "1 2" 5abc \
 			"5 junk" ;;
+	in_magn_[xyz]_calibbias)
+		# integer, chip LSB, |v| <= 4096
+		printf '%s\n' "" abc 4097 -4097 9000 1.5 $OVF 4294967297 "1 2" 5abc \
+			"5 junk" ;;
+	in_magn_[xyz]_calibscale)
+		# 0.5 .. 2 in millionths (a 7th decimal is dropped by the IIO
+		# core: 2.0000001 is 2); no $OVF, which the core's fixed-point
+		# parser would wrap
+		printf '%s\n' "" abc 0 0.499999 2.000001 3 -1 -0.5 -1.5 99999.5 \
+			"1 2" 1abc "1.5 x" 0.4999999 ;;
 	in_accel_oversampling_ratio)
 		printf '%s\n' "" abc 0 2 3 8 16 -1 -4 1.5 4.0001 $OVF "1 4" 4abc ;;
 	scan_elements/*_en | buffer0/*_en | buffer/enable | buffer0/enable)
