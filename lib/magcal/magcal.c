@@ -21,6 +21,9 @@
  *     max(outlier_ut, 4 robust sigma) of the last fit, until the set is
  *     stable.
  *  4. W = L / det(L)^(1/3), b = c0 + F0 b', F = F0 / det(L)^(1/3).
+ *  5. With a reference field R (config reference_field_ut), after the
+ *     verdict: W *= R / F, F = R (docs/DECISIONS.md, "Magnetometer
+ *     magnitude: the site's field as a reference").
  */
 
 #include <errno.h>
@@ -78,6 +81,7 @@ void magcal_config_default(struct magcal_config *cfg)
 	cfg->max_residual_ut = 1.5;
 	cfg->outlier_ut = 2.0;
 	cfg->max_uncertainty_deg = 0.6;
+	cfg->reference_field_ut = 0;
 }
 
 static bool config_ok(const struct magcal_config *c)
@@ -86,7 +90,10 @@ static bool config_ok(const struct magcal_config *c)
 	       c->min_coverage >= 0 && c->min_coverage <= 1 &&
 	       c->min_separation_ut >= 0 && c->field_min_ut >= 0 &&
 	       c->field_max_ut > c->field_min_ut && c->max_residual_ut > 0 &&
-	       c->outlier_ut > 0 && c->max_uncertainty_deg > 0;
+	       c->outlier_ut > 0 && c->max_uncertainty_deg > 0 &&
+	       (c->reference_field_ut == 0 ||
+		(c->reference_field_ut >= c->field_min_ut &&
+		 c->reference_field_ut <= c->field_max_ut));
 }
 
 struct magcal_session *magcal_new(const struct magcal_config *cfg)
@@ -479,6 +486,7 @@ static bool fit_result(const struct fit *f, struct magcal_result *r)
 		r->bias[i] = f->c0[i] + f->f0 * f->x[i];
 	}
 	r->field_ut = f->f0 / k;
+	r->fitted_field_ut = r->field_ut;
 	return true;
 }
 
@@ -724,6 +732,20 @@ static enum magcal_status verdict(const struct magcal_config *cfg,
 	return MAGCAL_OK;
 }
 
+/* The site's field as the calibrated magnitude: W, F and the residual scale */
+static void apply_reference(const struct magcal_config *cfg,
+			    struct magcal_result *r)
+{
+	int i, j;
+
+	r->scale = cfg->reference_field_ut / r->fitted_field_ut;
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			r->w[i][j] *= r->scale;
+	r->field_ut = cfg->reference_field_ut;
+	r->residual_ut *= r->scale;
+}
+
 int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 {
 	bool use[MAGCAL_MAX_SAMPLES];
@@ -734,6 +756,7 @@ int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 		return -EINVAL;
 	memset(r, 0, sizeof(*r));
 	r->w[0][0] = r->w[1][1] = r->w[2][2] = 1;
+	r->scale = 1;
 	for (i = 0; i < s->n; i++)
 		use[i] = true;
 	if (s->n < 10) {
@@ -748,6 +771,8 @@ int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 	quality(s, use, r);
 	r->uncertainty_deg = uncertainty_deg(s, use, &f, r);
 	r->status = verdict(&s->cfg, r);
+	if (s->cfg.reference_field_ut > 0 && r->fitted_field_ut > 0)
+		apply_reference(&s->cfg, r);
 	return 0;
 }
 

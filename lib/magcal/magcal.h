@@ -20,7 +20,10 @@
  * The scale of W is not observable (a sphere of radius kF reads the same
  * as one of F): W is normalised to det(W) = 1, so an isotropic gain of the
  * board's soft iron stays in the calibrated magnitude. Heading, which
- * uses directions only, does not depend on it.
+ * uses directions only, does not depend on it. An integrator who knows
+ * the site's field strength (the World Magnetic Model's, as Android's
+ * GeomagneticField gives it) sets config reference_field_ut: W is then
+ * scaled so the calibrated magnitude is that reference.
  *
  * Userspace C99, double arithmetic, no global state: sessions are
  * independent and may be used from different threads (one thread per
@@ -70,6 +73,11 @@ enum magcal_status {
  *			and 4 robust standard deviations is rejected
  * @max_uncertainty_deg: the fit's own uncertainty (see magcal_result)
  *			above this: MAGCAL_NO_COVERAGE
+ * @reference_field_ut:	the site's field magnitude, uT, or 0 (the default):
+ *			none. When set (within field_min_ut..field_max_ut),
+ *			magcal_solve() scales W (after every check has
+ *			judged the fit as made) so that the calibrated
+ *			field's magnitude is this reference
  */
 struct magcal_config {
 	unsigned int max_samples;
@@ -81,6 +89,7 @@ struct magcal_config {
 	double max_residual_ut;
 	double outlier_ut;
 	double max_uncertainty_deg;
+	double reference_field_ut;
 };
 
 /**
@@ -89,9 +98,16 @@ struct magcal_config {
  *		made (also with a status other than MAGCAL_OK) so that a
  *		caller can show why
  * @bias:	hard iron b, uT, sensor frame
- * @w:		soft-iron correction W, symmetric, det(W) = 1
- * @field_ut:	fitted field magnitude F, uT
- * @residual_ut: rms of |W (m - b)| - F over the samples used, uT
+ * @w:		soft-iron correction W, symmetric, det(W) = @scale^3
+ * @field_ut:	the calibrated field's magnitude F, uT: the fitted one, or
+ *		the reference when config reference_field_ut is set
+ * @fitted_field_ut: the fitted field magnitude (det(W) = 1), uT: what the
+ *		plausibility check (field_min_ut..field_max_ut) judged
+ * @scale:	the factor W was scaled by: reference_field_ut /
+ *		@fitted_field_ut with a reference, else 1
+ * @residual_ut: rms of |W (m - b)| - F over the samples used, uT (in the
+ *		calibrated field's scale: the quality check judged it
+ *		before the scaling)
  * @coverage:	fraction of the sphere of directions covered, 0..1
  * @used:	samples the fit used
  * @rejected:	samples left out as outliers
@@ -109,6 +125,8 @@ struct magcal_result {
 	double bias[3];
 	double w[3][3];
 	double field_ut;
+	double fitted_field_ut;
+	double scale;
 	double residual_ut;
 	double coverage;
 	unsigned int used;

@@ -72,10 +72,12 @@ static void direction(double cap_deg, double d[3])
 	d[2] = z;
 }
 
-static struct magcal_session *feed(const struct board *b, int n,
-				   double cap_deg, double f)
+/* @n samples within @cap_deg of +Z of a field of @f uT, config @cfg */
+static struct magcal_session *feed_cfg(const struct magcal_config *cfg,
+				       const struct board *b, int n,
+				       double cap_deg, double f)
 {
-	struct magcal_session *s = magcal_new(NULL);
+	struct magcal_session *s = magcal_new(cfg);
 	double d[3], m[3];
 	int i;
 
@@ -86,6 +88,12 @@ static struct magcal_session *feed(const struct board *b, int n,
 		assert_true(magcal_add(s, m, NULL) >= 0);
 	}
 	return s;
+}
+
+static struct magcal_session *feed(const struct board *b, int n,
+				   double cap_deg, double f)
+{
+	return feed_cfg(NULL, b, n, cap_deg, f);
 }
 
 /*
@@ -300,6 +308,76 @@ static void test_field_implausible(void **state)
 	magcal_free(s);
 }
 
+/*
+ * The site's field as a reference: W is scaled so the calibrated magnitude
+ * is the reference; bias, directions and the checks stay the fit's own.
+ */
+static void test_reference(void **state)
+{
+	struct magcal_result plain, r;
+	struct magcal_config cfg;
+	struct magcal_session *s;
+	double d[3], m[3], c[3];
+	int i, j;
+
+	magcal_config_default(&cfg);
+	assert_true(cfg.reference_field_ut == 0);
+	rng_state = 11;
+	s = feed(&board_a, 300, 180, 48);
+	assert_int_equal(magcal_solve(s, &plain), 0);
+	magcal_free(s);
+	assert_int_equal(plain.status, MAGCAL_OK);
+	assert_true(plain.scale == 1);
+	assert_true(plain.fitted_field_ut == plain.field_ut);
+	/* board_a's det(S)^(1/3) = 1.0063: the fit alone sees 48.3 uT */
+	assert_true(plain.field_ut > 48.25 && plain.field_ut < 48.35);
+
+	cfg.reference_field_ut = 48;
+	rng_state = 11;
+	s = feed_cfg(&cfg, &board_a, 300, 180, 48);
+	assert_int_equal(magcal_solve(s, &r), 0);
+	magcal_free(s);
+	assert_int_equal(r.status, MAGCAL_OK);
+	assert_true(r.field_ut == 48);
+	assert_true(fabs(r.fitted_field_ut - plain.field_ut) < 1e-9);
+	assert_true(fabs(r.scale - 48 / plain.field_ut) < 1e-9);
+	assert_true(fabs(r.residual_ut - plain.residual_ut * r.scale) < 1e-9);
+	for (i = 0; i < 3; i++) {
+		assert_true(fabs(r.bias[i] - plain.bias[i]) < 1e-9);
+		for (j = 0; j < 3; j++)
+			assert_true(fabs(r.w[i][j] - plain.w[i][j] * r.scale) <
+				    1e-9);
+	}
+	/* the calibrated field now has the true magnitude, every direction */
+	for (i = 0; i < 200; i++) {
+		direction(180, d);
+		reading(&board_a, d, 48, m);
+		magcal_apply(&r, m, c);
+		assert_true(fabs(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) -
+				 48) < 0.01);
+	}
+	check_against_truth(&board_a, &r, 48, 1e-4, 0.01);
+
+	/* a reference never rescues an implausible fit: judged before */
+	rng_state = 6;
+	s = feed_cfg(&cfg, &board_a, 300, 180, 120);
+	assert_int_equal(magcal_solve(s, &r), 0);
+	magcal_free(s);
+	assert_int_equal(r.status, MAGCAL_FIELD_IMPLAUSIBLE);
+	assert_true(r.fitted_field_ut > 70);
+	assert_true(r.field_ut == 48);
+
+	/* a reference outside the plausible field is a bad configuration */
+	cfg.reference_field_ut = 19.9;
+	assert_null(magcal_new(&cfg));
+	cfg.reference_field_ut = 70.1;
+	assert_null(magcal_new(&cfg));
+	cfg.reference_field_ut = -48;
+	assert_null(magcal_new(&cfg));
+	cfg.reference_field_ut = NAN;
+	assert_null(magcal_new(&cfg));
+}
+
 /* Progress grows as the motion covers more of the sphere */
 static void test_progress(void **state)
 {
@@ -461,6 +539,7 @@ int main(void)
 		cmocka_unit_test(test_no_coverage),
 		cmocka_unit_test(test_uncertain),
 		cmocka_unit_test(test_field_implausible),
+		cmocka_unit_test(test_reference),
 		cmocka_unit_test(test_progress),
 		cmocka_unit_test(test_add),
 		cmocka_unit_test(test_degenerate),
