@@ -435,6 +435,21 @@ static int apply_junit(struct cli_opts *o, const char *arg, char *err,
 	return 0;
 }
 
+static int apply_earth_field(struct cli_opts *o, const char *arg, char *err,
+			     size_t errlen)
+{
+	int64_t v;
+
+	if (cli_parse_fixed(arg, 3, CLI_MAGN_EARTH_MIN_NT, CLI_MAGN_EARTH_MAX_NT,
+			    &v))
+		return bad(err, errlen, "--earth-field takes the site's field strength in uT, %d..%d (the World Magnetic Model's total intensity there), not \"%s\"",
+			   CLI_MAGN_EARTH_MIN_NT / 1000,
+			   CLI_MAGN_EARTH_MAX_NT / 1000, arg);
+	o->magn_earth_nt = (int32_t)v;
+
+	return 0;
+}
+
 static int apply_timeout(struct cli_opts *o, const char *arg, char *err,
 			 size_t errlen)
 {
@@ -503,6 +518,7 @@ static const struct cli_option cli_options[] = {
 	{ "confidence", true, CMD(CLI_FACTORY_TEST), apply_confidence },
 	{ "junit", true, CMD(CLI_FACTORY_TEST), apply_junit },
 	{ "timeout", true, CMD(CLI_MAGN_CALIBRATE), apply_timeout },
+	{ "earth-field", true, CMD(CLI_MAGN_CALIBRATE), apply_earth_field },
 };
 
 #define CLI_N_OPTIONS	(sizeof(cli_options) / sizeof(cli_options[0]))

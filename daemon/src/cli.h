@@ -22,6 +22,9 @@
 /* magn-calibrate --timeout: default and largest, seconds */
 #define CLI_MAGN_TIMEOUT_S	120
 #define CLI_MAGN_TIMEOUT_MAX_S	3600
+/* magn-calibrate --earth-field: the plausible Earth field, nT (magcal's) */
+#define CLI_MAGN_EARTH_MIN_NT	20000
+#define CLI_MAGN_EARTH_MAX_NT	70000
 
 /*
  * How the chip is reached. Without --backend, cli_parse() picks one
@@ -77,6 +80,8 @@ enum cli_command {
  * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
  * @junit_path:		factory-test: also write the report as JUnit XML there
  * @magn_timeout_s:	magn-calibrate: the session's longest run
+ * @magn_earth_nt:	magn-calibrate --earth-field: the site's field
+ *			strength, nT, the calibrated magnitude; 0: none
  * @magn_feed:		the daemon's magn-feed request: its sample
  *			(REQUEST_FEED_VALUES), NULL otherwise
  * @log_fd:		in a request the daemon runs: its log (its stderr
@@ -106,6 +111,7 @@ struct cli_opts {
 	char backend_why[CLI_BACKEND_WHY_LEN];
 	const char *junit_path;
 	unsigned int magn_timeout_s;
+	int32_t magn_earth_nt;
 	const double *magn_feed;
 	int log_fd;
 	struct ftest_opts ftest;

@@ -79,6 +79,9 @@ static void print_fit(const struct calib_magn *m, const struct magn_session_resu
 	       100 * res->fit.coverage);
 	printf("  field %.3f uT, residual %.3f uT rms\n", m->field_nt / 1000.0,
 	       m->residual_nt / 1000.0);
+	if (res->fit.scale != 1)
+		printf("  the site's field: the fit saw %.3f uT, W scaled by %.6f\n",
+		       res->fit.fitted_field_ut, res->fit.scale);
 	printf("  hard iron [uT] %.3f %.3f %.3f\n", m->hard_iron_nt[0] / 1000.0,
 	       m->hard_iron_nt[1] / 1000.0, m->hard_iron_nt[2] / 1000.0);
 	for (i = 0; i < AS9888_AXES; i++)
@@ -113,7 +116,7 @@ int cmd_magn_calibrate(const struct cli_opts *o)
 	       o->magn_timeout_s);
 	fflush(stdout);
 	ret = magn_session_run(src, (uint64_t)o->magn_timeout_s * 1000000000ULL,
-			       stdout, &res, err, sizeof(err));
+			       o->magn_earth_nt / 1000.0, stdout, &res, err, sizeof(err));
 	magn_source_close(src);
 	if (ret == -ETIMEDOUT) {
 		magn_session_why(&res, err, sizeof(err));

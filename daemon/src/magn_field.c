@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +25,24 @@
 /* "m1 m2 m3 a1 a2 a3\n" with %.3f fields */
 #define LINE_LEN	160
 #define FILE_MAX	((MAGN_FIELD_KEEP + 2) * LINE_LEN)
+
+double magn_field_reference_ut(const struct calib_magn *m)
+{
+	double w[AS9888_AXES][AS9888_AXES], det;
+	int i, j;
+
+	if (!m->present)
+		return 0;
+	for (i = 0; i < AS9888_AXES; i++)
+		for (j = 0; j < AS9888_AXES; j++)
+			w[i][j] = m->soft_iron_micro[i][j] / MICRO;
+	det = w[0][0] * (w[1][1] * w[2][2] - w[1][2] * w[2][1]) -
+	      w[0][1] * (w[1][0] * w[2][2] - w[1][2] * w[2][0]) +
+	      w[0][2] * (w[1][0] * w[2][1] - w[1][1] * w[2][0]);
+	if (!(det > 0) || fabs(cbrt(det) - 1) <= MAGN_FIELD_SCALED_TOL)
+		return 0;
+	return m->field_nt / 1000.0;
+}
 
 bool magn_field_should_replace(const struct calib_magn *cur,
 			       const struct calib_magn *next, int64_t now)
@@ -218,6 +237,7 @@ int cmd_magn_feed(const struct cli_opts *o)
 	double s[AS9888_AXES], m[AS9888_AXES];
 	struct magcal_session *fit;
 	struct magn_driver_cal d;
+	struct magcal_config cfg;
 	struct magcal_result r;
 	struct calib_record rec;
 	int ret;
@@ -229,7 +249,14 @@ int cmd_magn_feed(const struct cli_opts *o)
 	driver_state(&rec, &d, accel, sizeof(accel));
 	magn_scale_ut(rec.eeprom, s);
 	magn_field_uncorrect(o->magn_feed, d.calibbias, d.calibscale_micro, s, m);
-	fit = magcal_new(NULL);
+	/* a calibration given the site's field keeps it through refinements */
+	magcal_config_default(&cfg);
+	cfg.reference_field_ut = magn_field_reference_ut(&rec.magn);
+	fit = magcal_new(&cfg);
+	if (!fit && cfg.reference_field_ut) {
+		cfg.reference_field_ut = 0;
+		fit = magcal_new(&cfg);
+	}
 	if (!fit) {
 		fprintf(stderr, "as9888-calibd: magn-feed: out of memory\n");
 		return EXIT_FAILURE;

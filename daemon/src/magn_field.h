@@ -34,6 +34,20 @@
 #define MAGN_FIELD_SAMPLES_NAME		"magn-samples"
 
 /*
+ * A W whose det^(1/3) is this far from 1 was scaled to the site's field
+ * (magn-calibrate --earth-field): det 1 is the fit's own, to the record's
+ * micro units
+ */
+#define MAGN_FIELD_SCALED_TOL		1e-4
+
+/*
+ * The site's field (uT) the calibration @m was scaled to by
+ * magn-calibrate --earth-field, for the field mode's fits to keep; 0 when
+ * it was not (its W has det 1) or there is none
+ */
+double magn_field_reference_ut(const struct calib_magn *m);
+
+/*
  * Whether the calibration @next should replace @cur (present or not) at
  * @now: it is meaningfully different and @cur is old enough
  */

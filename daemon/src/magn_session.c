@@ -22,10 +22,11 @@ static bool try_solve(struct magcal_session *fit, struct magn_session_result *re
 }
 
 int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
-		     FILE *progress, struct magn_session_result *res,
-		     char *err, size_t errlen)
+		     double earth_ut, FILE *progress,
+		     struct magn_session_result *res, char *err, size_t errlen)
 {
-	struct magcal_session *fit = magcal_new(NULL);
+	struct magcal_session *fit;
+	struct magcal_config cfg;
 	uint64_t start = magn_source_now_ns(src), now = start;
 	unsigned int kept = 0, next_solve = MAGN_SESSION_SOLVE_EVERY;
 	unsigned int next_progress = MAGN_SESSION_PROGRESS_EVERY;
@@ -33,6 +34,15 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 	int ret = -ETIMEDOUT;
 
 	memset(res, 0, sizeof(*res));
+	magcal_config_default(&cfg);
+	cfg.reference_field_ut = earth_ut;
+	fit = magcal_new(&cfg);
+	if (!fit && earth_ut) {
+		/* the one configuration this session changes */
+		snprintf(err, errlen, "the site's field %.3f uT is not the Earth's (%.0f..%.0f uT), or out of memory",
+			 earth_ut, cfg.field_min_ut, cfg.field_max_ut);
+		return -EINVAL;
+	}
 	if (!fit) {
 		snprintf(err, errlen, "out of memory");
 		return -ENOMEM;
@@ -92,7 +102,7 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 	switch (f->status) {
 	case MAGCAL_FIELD_IMPLAUSIBLE:
 		snprintf(buf, size, "the fitted field, %.1f uT, is not the Earth's (20..70 uT): a magnet or steel close to the device? Move away from it and run again",
-			 f->field_ut);
+			 f->fitted_field_ut);
 		break;
 	case MAGCAL_RESIDUAL_HIGH:
 		snprintf(buf, size, "the samples do not fit one field (residual %.2f uT rms, %u rejected): a disturbance during the session (a magnet or moving metal nearby); run again away from it",

@@ -48,13 +48,14 @@ struct magn_session_result {
 
 /*
  * Run a session on @src for at most @timeout_ns, progress lines to
- * @progress (NULL: none). 0 when the fit's quality was reached (@res->fit
+ * @progress (NULL: none). @earth_ut: the site's field strength, uT, the
+ * calibrated magnitude (magcal's reference_field_ut), or 0: none. 0 when the fit's quality was reached (@res->fit
  * with status MAGCAL_OK), -ETIMEDOUT when the time ran out first (@res
  * says how far it got), other -errno when the source failed (why in
  * @err).
  */
 int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
-		     FILE *progress, struct magn_session_result *res,
+		     double earth_ut, FILE *progress, struct magn_session_result *res,
 		     char *err, size_t errlen);
 
 /*

@@ -4,7 +4,8 @@
 # as9888-calibd magn-calibrate on the simulator (virtual clock): a board
 # with hard and soft iron turned by the model's tumble is calibrated and
 # the stored hard iron and soft iron are compared with the unit's truth;
-# a device lying still, an implausible field and a passing magnet fail
+# --earth-field makes the stored field the site's; a device lying still,
+# an implausible field and a passing magnet fail
 # (or, for the magnet, are rejected) with a clear message and leave the
 # record as it was; the options are checked. Output is TAP.
 set -u
@@ -65,6 +66,38 @@ field = float(keys["magn_field"])
 assert 40 < field < 56, field
 assert err_b < 1.0 and err_w < 0.01, (b, W)
 PY
+
+# the site's field (--earth-field, the WMM's figure) as the calibrated
+# magnitude: the same session, W scaled so the stored field is the
+# reference; the fit's own field and the scale are shown
+cp "$rec" "$work/plain"
+run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --earth-field 48.5 --record "$rec"
+check "--earth-field 48.5: exit 0, says the scale, stored" eval '[ $rc -eq 0 ] &&
+	says "the site.s field: the fit saw [0-9.]* uT, W scaled by" out && says "^Stored in" out'
+check "--earth-field 48.5: the stored field is 48.5 uT, W the fit's times the scale, the hard iron the same" \
+	python3 - "$work/plain" "$rec" <<'PY'
+import sys
+def keys(path):
+    return dict(l.split(" = ", 1) for l in open(path).read().splitlines()
+                if " = " in l)
+plain, ref = keys(sys.argv[1]), keys(sys.argv[2])
+f0, f1 = float(plain["magn_field"]), float(ref["magn_field"])
+print(f"# field without the reference {f0} uT, with it {f1} uT")
+assert abs(f1 - 48.5) < 0.0015 and abs(f0 - 48.5) > 0.05, (f0, f1)
+w0 = [float(v) for v in plain["magn_soft_iron"].split()]
+w1 = [float(v) for v in ref["magn_soft_iron"].split()]
+assert all(abs(b - a * f1 / f0) < 1e-5 for a, b in zip(w0, w1)), (w0, w1)
+assert plain["magn_hard_iron"] == ref["magn_hard_iron"]
+PY
+cp "$rec" "$work/before"
+cp "$rec.previous" "$work/before.previous"
+for bad in 19.9 70.001 abc -48 "" 48uT; do
+	run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --earth-field "$bad" --record "$rec"
+	check "--earth-field \"$bad\": a usage error, says the range, nothing written" eval '
+		[ $rc -eq 2 ] && says "earth-field takes the site.s field strength in uT, 20..70" err &&
+		! says "Turn the device" out &&
+		cmp -s "$rec" "$work/before" && cmp -s "$rec.previous" "$work/before.previous"'
+done
 
 # failures leave the record as it was
 cp "$rec" "$work/before"

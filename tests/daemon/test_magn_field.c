@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "magn_field.h"
+#include "magn_session.h"
 #include "magn_example.h"
 #include "request.h"
 
@@ -44,6 +45,36 @@ static void replace_rules(void **state)
 	next = magn_example;
 	next.soft_iron_micro[2][0] += MAGN_FIELD_W_STEP_MICRO;
 	assert_true(magn_field_should_replace(&magn_example, &next, old));
+}
+
+/* A calibration scaled to the site's field is recognised by det(W) != 1 */
+static void reference_from_record(void **state)
+{
+	struct magcal_result fit = { .status = MAGCAL_OK, .field_ut = 48.3,
+				     .residual_ut = 0.3, .coverage = 0.7,
+				     .used = 250, .scale = 1 };
+	struct calib_magn m, none = { 0 };
+	char err[256];
+	int i;
+
+	(void)state;
+	/* det(W) = 1: the fit's own scale, no reference */
+	fit.w[0][0] = 1.05;
+	fit.w[1][1] = 1 / 1.05;
+	fit.w[2][2] = 1;
+	fit.w[0][1] = fit.w[1][0] = 0;
+	assert_int_equal(magn_session_to_record(&fit, 1795392000, &m, err,
+						sizeof(err)), 0);
+	assert_true(magn_field_reference_ut(&m) == 0);
+	assert_true(magn_field_reference_ut(&none) == 0);
+	/* scaled to a 48.5 uT site: the reference comes back */
+	fit.scale = 48.5 / fit.field_ut;
+	for (i = 0; i < 3; i++)
+		fit.w[i][i] *= fit.scale;
+	fit.field_ut = 48.5;
+	assert_int_equal(magn_session_to_record(&fit, 1795392000, &m, err,
+						sizeof(err)), 0);
+	assert_true(fabs(magn_field_reference_ut(&m) - 48.5) < 1e-9);
 }
 
 static void uncorrect_inverts_driver(void **state)
@@ -96,6 +127,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(replace_rules),
+		cmocka_unit_test(reference_from_record),
 		cmocka_unit_test(uncorrect_inverts_driver),
 		cmocka_unit_test(feed_line),
 	};
