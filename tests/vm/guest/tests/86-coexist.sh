@@ -130,8 +130,11 @@ eq "the capture it waited for completed (exit 0, 300 scans)" "$hrc $(size)" "0 $
 diag "AS9888-METRIC coexist_capture_longest_gap_ms=$(max_gap_ms $O/held.bin)"
 
 # --- daemon first ------------------------------------------------------------
-# (200 samples a level run: check holds the buffer for seconds)
-$CALIBD check --backend iio --record /tmp/rec --samples 200 > $O/check3.out 2>&1 &
+# (1000 samples a level run: check holds the buffer for seconds, also
+# at the fastest rate the driver offers, 400 Hz, which the factory test
+# and check use since issue 27; 200 samples took half a second there,
+# shorter than this loop's poll could be sure to see)
+$CALIBD check --backend iio --record /tmp/rec --samples 1000 > $O/check3.out 2>&1 &
 CPID=$!
 _i=0
 while [ "$(cat $DEV/buffer/enable)" != 1 ] && kill -0 $CPID 2>/dev/null && [ $_i -lt 300 ]; do
