@@ -137,7 +137,8 @@ debs=("$debdir/as9888-calibd_${ver}_$(dpkg --print-architecture).deb" "$debdir/a
 # the adapter against the same kernel, with the interrupt simulator
 ad=$src/tests/vm/adapter
 cp "$top/tests/boot/irq_sim_compat.c" "$ad/"
-sed -i 's/^as9888_sim-y := .*/& irq_sim_compat.o/' "$ad/Kbuild"
+# (a line of its own: the object list goes on over continuation lines)
+echo 'as9888_sim-y += irq_sim_compat.o' >>"$ad/Kbuild"
 make -C "/lib/modules/$KVER/build" M="$ad" modules >"$work/adapter.log" 2>&1 ||
 	die "adapter build failed (log $work/adapter.log)"
 
