@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -110,6 +111,15 @@ static void samples_path(const struct cli_opts *o, char *path, size_t size)
 			 MAGN_FIELD_SAMPLES_NAME);
 }
 
+/* A regular file owned by us that no other user can write */
+static bool samples_file_trusted(int fd)
+{
+	struct stat st;
+
+	return !fstat(fd, &st) && S_ISREG(st.st_mode) &&
+	       st.st_uid == geteuid() && !(st.st_mode & (S_IWGRP | S_IWOTH));
+}
+
 /*
  * Append @m, @a to the samples file (locked), keep the last
  * MAGN_FIELD_KEEP, and feed all of them to @fit when MAGN_FIELD_FIT_EVERY
@@ -137,6 +147,18 @@ static int store_sample(const char *path, const double m[3], const double a[3],
 			close(fd);
 		free(text);
 		return ret;
+	}
+	/*
+	 * Only a file of our own that nobody else may write: next to a
+	 * socket in a shared directory another user could have planted it
+	 * to steer the fit or have us write into their file.
+	 */
+	if (!samples_file_trusted(fd)) {
+		snprintf(err, errlen, "%.300s: not a regular file of ours, mode 0600: refused, nothing stored",
+			 path);
+		close(fd);
+		free(text);
+		return -EPERM;
 	}
 	len = read(fd, text, FILE_MAX);
 	if (len < 0)

@@ -152,6 +152,17 @@ check "the calibration it replaced is kept as the previous record" \
 check "the samples stay on the runtime directory, at most 300" eval '
 	[ "$(grep -vc "^#" "$work/run/magn-samples")" -eq 300 ]'
 
+# a samples file another user planted (a shared socket directory) is
+# neither read nor written: the fit cannot be steered through it
+rm -f "$work/run/magn-samples"
+printf '0\n' > "$work/run/magn-samples"
+chown nobody "$work/run/magn-samples"
+cp "$work/run/magn-samples" "$work/planted"
+"$here/magn_feed.py" "$sock" 1 6 120 -80 45 >"$work/feed" 2>&1
+check "a samples file of another user: left as it was" \
+	cmp -s "$work/run/magn-samples" "$work/planted"
+rm -f "$work/run/magn-samples"
+
 # after all that, idle again: the field mode leaves nothing behind that
 # wakes the daemon (no timer, no file watch); as daemon.sh measures it
 switches() { awk '/^voluntary_ctxt_switches/ { print $2 }' "/proc/$pid/status"; }
