@@ -17,8 +17,9 @@
 #    compared with the bounds below;
 #  - the udev rule parsed by udevadm verify when this udevadm has it, and
 #    checked for the SYSTEMD_WANTS line the restore depends on and for its
-#    match on the accelerometer device's name alone (as9888-accel: the
-#    chip's magnetometer device must not start a second restore).
+#    match on the chip's two device names (as9888-accel, as9888-magn: each
+#    device's instance writes its own directory, ReadWritePaths=%f), and
+#    the restore's ExecStart passing that directory on (--device %f).
 #
 # Bounds: issue 13 asks for at most 2.0 (restore) and 3.0 (daemon); on
 # Debian 12's systemd 252 the units score 0.7 and 1.1 (from 9.5 and 8.9).
@@ -116,7 +117,7 @@ grep -q '^WantedBy=sockets.target$' "$unitdir/as9888-calibd.socket" ||
 statedir=$(opt statedir)
 cond=$(sed -n 's/^ExecCondition=//p' "$unitdir/as9888-calibd-restore@.service")
 case $cond in
-"/bin/sh -c 'test -e $statedir/calibration && exit 0; echo \"<4>as9888-calibd: no calibration record at $statedir/calibration: "*"Run as9888-calibd factory-test --backend iio on this board"*"; exit 1'") ;;
+"/bin/sh -c 'test -e $statedir/calibration && exit 0; test \"\$\$(cat %f/name)\" = as9888-accel && echo \"<4>as9888-calibd: no calibration record at $statedir/calibration: "*"Run as9888-calibd factory-test --backend iio on this board"*"; exit 1'") ;;
 *) fail "restore: no ExecCondition= warning for a missing $statedir/calibration" ;;
 esac
 if grep -q '^ConditionPathExists=' "$unitdir/as9888-calibd-restore@.service"; then
@@ -177,9 +178,12 @@ if udevadm verify --help >/dev/null 2>&1; then
 fi
 grep -q 'ENV{SYSTEMD_WANTS}+="as9888-calibd-restore@.service"' "$rule" &&
 	grep -q 'TAG+="systemd"' "$rule" || fail "$(basename "$rule"): no SYSTEMD_WANTS"
-# one restore per chip: the accelerometer device only, not the magnetometer's
-grep -q '^ATTR{name}!="as9888-accel", GOTO="as9888_calibd_end"$' "$rule" ||
-	fail "$(basename "$rule"): does not match the accelerometer device (as9888-accel) alone"
+# one restore per device, each writing its own directory (ReadWritePaths=%f)
+grep -q '^ATTR{name}!="as9888-accel|as9888-magn", GOTO="as9888_calibd_end"$' "$rule" ||
+	fail "$(basename "$rule"): does not match the chip's two devices (as9888-accel, as9888-magn)"
+grep -q '^ExecStart=.* restore --backend iio --device %f ' "$unitdir/as9888-calibd-restore@.service" &&
+	grep -qx 'ReadWritePaths=%f' "$unitdir/as9888-calibd-restore@.service" ||
+	fail "restore: not restore --device %f with ReadWritePaths=%f (its instance's device alone)"
 
 # the same checks on a build for a persist partition (-Dstatedir=), as a
 # read-only or A/B root needs: every path follows the option

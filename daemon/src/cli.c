@@ -435,6 +435,17 @@ static int apply_junit(struct cli_opts *o, const char *arg, char *err,
 	return 0;
 }
 
+static int apply_device(struct cli_opts *o, const char *arg, char *err,
+			size_t errlen)
+{
+	if (arg[0] != '/')
+		return bad(err, errlen, "--device takes the absolute sysfs path of an AS9888 IIO device (as systemd's %%f gives it), not \"%s\"",
+			   arg);
+	o->device = arg;
+
+	return 0;
+}
+
 static int apply_earth_field(struct cli_opts *o, const char *arg, char *err,
 			     size_t errlen)
 {
@@ -517,6 +528,7 @@ static const struct cli_option cli_options[] = {
 	{ "sequence", true, CMD(CLI_FACTORY_TEST), apply_sequence },
 	{ "confidence", true, CMD(CLI_FACTORY_TEST), apply_confidence },
 	{ "junit", true, CMD(CLI_FACTORY_TEST), apply_junit },
+	{ "device", true, CMD(CLI_RESTORE), apply_device },
 	{ "timeout", true, CMD(CLI_MAGN_CALIBRATE), apply_timeout },
 	{ "earth-field", true, CMD(CLI_MAGN_CALIBRATE), apply_earth_field },
 };
@@ -650,6 +662,9 @@ int cli_parse(int argc, char **argv, struct cli_opts *o, char *err,
 	    (o->raw.gpiochip || o->raw.rstn >= 0 || o->raw.int1 >= 0 ||
 	     o->raw.int2 >= 0 || strcmp(o->raw.i2c_dev, CLI_DEFAULT_I2C_DEV)))
 		return bad(err, errlen, "--i2c-dev, --gpiochip and the line options are for --backend raw");
+	if (o->device && o->backend != CLI_BACKEND_IIO &&
+	    o->backend != CLI_BACKEND_NONE)
+		return bad(err, errlen, "--device is for --backend iio (a device of the bound driver)");
 
 	return 0;
 }

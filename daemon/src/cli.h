@@ -79,6 +79,9 @@ enum cli_command {
  * @backend_auto:	@backend was picked, not given by --backend
  * @backend_why:	why no backend was found (CLI_BACKEND_NONE)
  * @junit_path:		factory-test: also write the report as JUnit XML there
+ * @device:		restore --backend iio --device: the one IIO device
+ *			(its sysfs directory) to restore, the other left
+ *			alone; NULL: the chip's accelerometer and magnetometer
  * @magn_timeout_s:	magn-calibrate: the session's longest run
  * @magn_earth_nt:	magn-calibrate --earth-field: the site's field
  *			strength, nT, the calibrated magnitude; 0: none
@@ -110,6 +113,7 @@ struct cli_opts {
 	bool backend_auto;
 	char backend_why[CLI_BACKEND_WHY_LEN];
 	const char *junit_path;
+	const char *device;
 	unsigned int magn_timeout_s;
 	int32_t magn_earth_nt;
 	const double *magn_feed;

@@ -139,6 +139,13 @@ static int restore_iio(const struct cli_opts *o)
 {
 	char dir[IIO_PATH_MAX];
 
+	if (o->device) {
+		if (iio_restore_device(o->record_path, o->device))
+			return EXIT_FAILURE;
+		if (o->verbose)
+			printf("restored %s to %s\n", o->record_path, o->device);
+		return EXIT_SUCCESS;
+	}
 	if (iio_find_device(NULL, dir, sizeof(dir))) {
 		fprintf(stderr, "as9888-calibd: restore: no %s IIO device; nothing applied: " REMEDY_NO_DRIVER "\n",
 			IIO_ACCEL_NAME);

@@ -233,7 +233,8 @@ int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])
 	return n == AS9888_EEPROM_LEN ? 0 : -EIO;
 }
 
-int iio_apply_checked(const char *dir, const struct calib_record *rec,
+/* The device at @dir is on the chip @rec was made on (its EEPROM) */
+static int check_chip(const char *dir, const struct calib_record *rec,
 		      const char *what)
 {
 	uint8_t eeprom[AS9888_EEPROM_LEN];
@@ -252,7 +253,40 @@ int iio_apply_checked(const char *dir, const struct calib_record *rec,
 		return -ENODEV;
 	}
 
-	return iio_apply_record(dir, rec);
+	return 0;
+}
+
+int iio_apply_checked(const char *dir, const struct calib_record *rec,
+		      const char *what)
+{
+	int ret = check_chip(dir, rec, what);
+
+	return ret ? ret : iio_apply_record(dir, rec);
+}
+
+int iio_apply_device(const char *dir, const struct calib_record *rec,
+		     const char *what)
+{
+	char name[IIO_ATTR_MAX];
+	int ret;
+
+	ret = iio_read_attr(dir, "name", name, sizeof(name));
+	if (ret < 0) {
+		fprintf(stderr, "as9888-calibd: %s is not an IIO device (no name: %s); nothing applied\n",
+			dir, strerror(-ret));
+		return ret;
+	}
+	if (strcmp(name, IIO_ACCEL_NAME) && strcmp(name, IIO_MAGN_NAME)) {
+		fprintf(stderr, "as9888-calibd: %s is IIO device \"%s\", not an AS9888 one (%s or %s); nothing applied\n",
+			dir, name, IIO_ACCEL_NAME, IIO_MAGN_NAME);
+		return -ENODEV;
+	}
+	ret = check_chip(dir, rec, what);
+	if (ret)
+		return ret;
+
+	return strcmp(name, IIO_ACCEL_NAME) ? magn_iio_apply_dev(dir, rec) :
+					      iio_apply_accel(dir, rec);
 }
 
 /*
@@ -449,7 +483,7 @@ int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
 	return 0;
 }
 
-int iio_apply_record(const char *dir, const struct calib_record *rec)
+int iio_apply_accel(const char *dir, const struct calib_record *rec)
 {
 	struct as9888_accel_cal cal;
 	struct as9888_eeprom ee;
@@ -473,5 +507,12 @@ int iio_apply_record(const char *dir, const struct calib_record *rec)
 		return ret;
 	}
 
-	return magn_iio_apply(dir, rec);
+	return 0;
+}
+
+int iio_apply_record(const char *dir, const struct calib_record *rec)
+{
+	int ret = iio_apply_accel(dir, rec);
+
+	return ret ? ret : magn_iio_apply(dir, rec);
 }

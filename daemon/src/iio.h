@@ -129,13 +129,18 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 			char *err, size_t errlen);
 
 /*
- * Put @rec in effect in the device at @dir (no identity check): the
- * calibration its level test gives (as9888_accel_cal_from_level() with
- * the DAC values the level test ran with, the record's) into calibbias,
- * read back; the driver chooses the DAC from it. Nothing is written when
- * the record gives no calibration. Then the magnetometer's part, on the
- * magnetometer device beside it (magn_iio_apply()). 0 or -errno, said on
- * stderr.
+ * Put @rec's accelerometer part in effect in the device at @dir (no
+ * identity check): the calibration its level test gives
+ * (as9888_accel_cal_from_level() with the DAC values the level test ran
+ * with, the record's) into calibbias, read back; the driver chooses the
+ * DAC from it. Nothing is written when the record gives no calibration.
+ * 0 or -errno, said on stderr.
+ */
+int iio_apply_accel(const char *dir, const struct calib_record *rec);
+
+/*
+ * iio_apply_accel(), then the magnetometer's part on the magnetometer
+ * device beside @dir (magn_iio_apply()).
  */
 int iio_apply_record(const char *dir, const struct calib_record *rec);
 
@@ -147,5 +152,15 @@ int iio_apply_record(const char *dir, const struct calib_record *rec);
  */
 int iio_apply_checked(const char *dir, const struct calib_record *rec,
 		      const char *what);
+
+/*
+ * The same for one device only, either of the chip's two: @dir is the
+ * accelerometer's (its part of @rec, the magnetometer left alone) or the
+ * magnetometer's (its part, magn_iio_apply_dev()); any other device is
+ * refused with -ENODEV. For restore --device: the restore unit started
+ * for a device may write that device's directory only.
+ */
+int iio_apply_device(const char *dir, const struct calib_record *rec,
+		     const char *what);
 
 #endif

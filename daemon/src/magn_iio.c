@@ -191,9 +191,7 @@ static int find_magn(const char *accel_dir, bool wait, char *magn, size_t size)
 
 int magn_iio_apply(const char *accel_dir, const struct calib_record *rec)
 {
-	char magn[IIO_PATH_MAX], err[IIO_ERR_LEN];
-	struct magn_driver_cal d;
-	int ret;
+	char magn[IIO_PATH_MAX];
 
 	if (find_magn(accel_dir, rec->magn.present, magn, sizeof(magn))) {
 		if (rec->magn.present)
@@ -201,6 +199,16 @@ int magn_iio_apply(const char *accel_dir, const struct calib_record *rec)
 				IIO_MAGN_NAME, accel_dir);
 		return 0;
 	}
+
+	return magn_iio_apply_dev(magn, rec);
+}
+
+int magn_iio_apply_dev(const char *magn, const struct calib_record *rec)
+{
+	char err[IIO_ERR_LEN];
+	struct magn_driver_cal d;
+	int ret;
+
 	if (!magn_iio_has_calibration(magn)) {
 		if (rec->magn.present)
 			fprintf(stderr, "as9888-calibd: warning: %s has no in_magn_{x,y,z}_calib{bias,scale}: the driver is older than the magnetometer calibration, which is not applied (the accelerometer's is); update the driver\n",
@@ -213,9 +221,7 @@ int magn_iio_apply(const char *accel_dir, const struct calib_record *rec)
 		/*
 		 * A record without a magnetometer section asks for the
 		 * driver's defaults. A device just bound already holds them:
-		 * then nothing is written, so a restore that may write only
-		 * the accelerometer's directory (the restore unit's
-		 * ReadWritePaths=) still succeeds.
+		 * then nothing is written.
 		 */
 		magn_driver_identity(&d);
 		if (!magn_iio_read(magn, &now, err, sizeof(err)) &&

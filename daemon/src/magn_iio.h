@@ -42,4 +42,11 @@ int magn_iio_read(const char *magn_dir, struct magn_driver_cal *d,
  */
 int magn_iio_apply(const char *accel_dir, const struct calib_record *rec);
 
+/*
+ * The same on the magnetometer device at @magn_dir itself (restore
+ * --device: the restore unit started for that device may write its
+ * directory only). 0 or -errno (said on stderr).
+ */
+int magn_iio_apply_dev(const char *magn_dir, const struct calib_record *rec);
+
 #endif

@@ -419,8 +419,8 @@ bool session_store_result(const struct cli_opts *o, struct ftest_result *res,
  * Here, not in iio.c, so that the driver's sysfs layer does not depend on
  * the commands' record handling.
  */
-int iio_restore(const char *record_path, const char *dir,
-		bool allow_simulated)
+static int restore(const char *record_path, const char *dir,
+		   bool allow_simulated, bool one_device)
 {
 	struct calib_record rec;
 
@@ -432,5 +432,17 @@ int iio_restore(const char *record_path, const char *dir,
 		return -EPERM;
 	}
 
-	return iio_apply_checked(dir, &rec, record_path);
+	return one_device ? iio_apply_device(dir, &rec, record_path) :
+			    iio_apply_checked(dir, &rec, record_path);
+}
+
+int iio_restore(const char *record_path, const char *dir,
+		bool allow_simulated)
+{
+	return restore(record_path, dir, allow_simulated, false);
+}
+
+int iio_restore_device(const char *record_path, const char *dir)
+{
+	return restore(record_path, dir, false, true);
 }

@@ -81,4 +81,10 @@ int session_recover_now(const char *path);
 int iio_restore(const char *record_path, const char *dir,
 		bool allow_simulated);
 
+/*
+ * The same for the one AS9888 IIO device at @dir, accelerometer or
+ * magnetometer (iio_apply_device()): restore --device.
+ */
+int iio_restore_device(const char *record_path, const char *dir);
+
 #endif

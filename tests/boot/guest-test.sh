@@ -4,12 +4,16 @@
 # In the Debian guest of scripts/boot-debian.sh, after multi-user.target.
 # The phase comes from the kernel command line (as9888.phase=):
 #  factory  a board fresh from assembly: no record yet; it must boot clean
-#           (no failed unit, the restore unit skipped), then the factory
-#           test runs through the driver and writes the record.
+#           (no failed unit, the restore units skipped), then the factory
+#           test runs through the driver and writes the record, and
+#           magn-calibrate, the board turned by the adapter's tumble,
+#           adds the magnetometer's calibration (format 2).
 #           The daemon, asked before there is a record, says to run the
 #           factory test and keeps running.
 #  boot     the record exists: the calibration must have been applied by
-#           as9888-calibd-restore@ before multi-user.target, with the
+#           as9888-calibd-restore@ before multi-user.target, the
+#           accelerometer's and the magnetometer's each by its device's
+#           own instance, with the
 #           driver a DKMS module and the adapter loaded at boot; then a
 #           rebind, a late instantiation and the driver module loaded
 #           after boot are applied again, and the socket answers
@@ -44,12 +48,20 @@ gone_and_back() {
 	check "$1: restore@ ran again for the device" \
 		eval '[ "$t2" -gt "$t1" ] && [ "$(mono "$u2" ExecMainStatus)" = 0 ]'
 }
-restore_unit() { systemctl list-units --all --plain --no-legend 'as9888-calibd-restore@*' | awk '{ print $1; exit }'; }
+# restore_unit [NAME]: the restore@ instance of the IIO device NAME
+# (default the accelerometer's), named by the device's sysfs path
+restore_unit() {
+	local d
+	d=$(dev "${1:-}") || d=/sys/none
+	echo "as9888-calibd-restore@$(systemd-escape --path "$d").service"
+}
+# the magnetometer's calibration in the driver, as the factory phase saved it
+magn_applied() { [ -s /root/magn-cal ] && [ "$(magn_cal)" = "$(cat /root/magn-cal)" ]; }
 
 # the plan: 5 checks for every phase, then the phase's own
 case $phase in
-factory) echo "BOOTTEST plan $((5 + 8))" ;;
-boot) echo "BOOTTEST plan $((5 + 8 + 2 * 5 + 6))" ;;
+factory) echo "BOOTTEST plan $((5 + 11))" ;;
+boot) echo "BOOTTEST plan $((5 + 11 + 2 * 5 + 6))" ;;
 *)
 	echo "BOOTTEST plan 1"
 	bad "as9888.phase='$phase' on the kernel command line is not a phase (factory, boot)"
@@ -61,8 +73,9 @@ echo "BOOTTEST phase $phase, kernel $(uname -r), systemd $(systemctl --version |
 check "the AS9888 IIO device is there (driver from DKMS, adapter at boot)" wait_dev
 check "its magnetometer device (as9888-magn) beside it, below the same bus device" \
 	eval 'm=$(dev as9888-magn) && [ "$(dirname "$m")" = "$(dirname "$(dev)")" ]'
-check "one restore unit: the magnetometer device starts none" \
-	eval '[ "$(systemctl list-units --all --plain --no-legend "as9888-calibd-restore@*" | wc -l)" -eq 1 ]'
+check "two restore units, one per IIO device (as9888-accel, as9888-magn)" \
+	eval '[ "$(systemctl list-units --all --plain --no-legend "as9888-calibd-restore@*" | wc -l)" -eq 2 ] &&
+	      systemctl cat "$(restore_unit)" "$(restore_unit as9888-magn)" >/dev/null 2>&1'
 check "driver modules from the DKMS tree" eval 'modinfo -n as9888_i2c | grep -q /updates/dkms/'
 # (multi-user.target is reached: this unit is ordered after it)
 failed=$(systemctl --failed --plain --no-legend | awk '{ print $1 }' | grep -v as9888-boottest | tr '\n' ' ')
@@ -78,6 +91,9 @@ factory)
 	u=$(restore_unit)
 	check "no record: restore unit $u skipped by its ExecCondition=, not failed" \
 		eval '[ -n "$u" ] && [ "$(mono "$u" Result)" = exec-condition ] && [ "$(mono "$u" ActiveState)" = inactive ]'
+	m=$(restore_unit as9888-magn)
+	check "no record: the magnetometer's restore unit skipped too" \
+		eval '[ "$(mono "$m" Result)" = exec-condition ] && [ "$(mono "$m" ActiveState)" = inactive ]'
 	warn=$(journalctl -b -q -p warning..warning -o cat | grep -c "no calibration record at $rec" || true)
 	check "no record: one warning in the journal (priority warning), saying what to run" \
 		eval '[ "$warn" -eq 1 ] &&
@@ -91,6 +107,21 @@ factory)
 		eval 'as9888-calibd factory-test --backend iio --record "$rec" >/tmp/ft.log 2>&1'
 	tail -5 /tmp/ft.log | sed 's/^/BOOTTEST # /'
 	check "record written" test -s "$rec"
+	# the board's magnetic world (adapter knobs): hard and soft iron, a
+	# little noise, and a tumble that turns it a few degrees a measurement
+	sim=/sys/kernel/debug/as9888_sim
+	echo "48 60 3" >$sim/earth && echo "120 -80 45" >$sim/hard_iron &&
+		echo "1.05 0.03 -0.02 0.03 0.95 0.04 -0.02 0.04 1.02" >$sim/soft_iron &&
+		echo 0.4 >$sim/magn_noise && echo 4 >$sim/tumble
+	check "magn-calibrate through the driver, the board tumbling: a format 2 record" \
+		eval 'as9888-calibd magn-calibrate --backend iio --record "$rec" >/tmp/mc.log 2>&1 &&
+		      grep -qx "format = as9888-calibration 2" "$rec"'
+	tail -4 /tmp/mc.log | sed 's/^/BOOTTEST # /'
+	echo 0 >$sim/tumble
+	magn_cal >/root/magn-cal
+	echo "BOOTTEST # the driver's magnetometer calibration: $(cat /root/magn-cal)"
+	check "and applied to the driver (calibbias not the defaults)" \
+		eval '! grep -q "^0 0 0 " /root/magn-cal'
 	;;
 boot)
 	u=$(restore_unit)
@@ -98,6 +129,15 @@ boot)
 	check "calibration applied at boot" applied
 	check "by as9888-calibd-restore@ (ran, succeeded)" \
 		eval '[ -n "$u" ] && [ "$(mono "$u" ExecMainStatus)" = 0 ] && [ "$(mono "$u" ActiveState)" = active ]'
+	mu=$(restore_unit as9888-magn)
+	echo "BOOTTEST # the magnetometer's restore unit: $mu"
+	check "the magnetometer's calibration (format 2 record) applied at boot" magn_applied
+	check "by the as9888-magn device's own restore@ (ran, succeeded; sandboxed to its directory)" \
+		eval '[ "$(mono "$mu" ExecMainStatus)" = 0 ] && [ "$(mono "$mu" ActiveState)" = active ] &&
+		      [ "$(systemctl show -P ReadWritePaths "$mu")" = "$(dev as9888-magn)" ]'
+	check "before multi-user.target too" \
+		eval '[ "$(mono "$mu" ActiveEnterTimestampMonotonic)" -gt 0 ] &&
+		      [ "$(mono "$mu" ActiveEnterTimestampMonotonic)" -lt "$(mono multi-user.target ActiveEnterTimestampMonotonic)" ]'
 	r=$(mono "$u" ActiveEnterTimestampMonotonic)
 	m=$(mono multi-user.target ActiveEnterTimestampMonotonic)
 	echo "BOOTTEST # restore done at ${r} us, multi-user.target at ${m} us (monotonic)"

@@ -17,12 +17,21 @@ dev() {	# the sysfs directory of the IIO device named $1, default the accelerome
 	return 1
 }
 wait_dev() { for _ in $(seq 100); do dev >/dev/null && return 0; sleep 0.2; done; return 1; }
-# the driver's calibbias after probe is 0 0 0; a record's is not
+# the magnetometer's calibbias and calibscale, x y z, on one line
+magn_cal() {
+	local d
+	d=$(dev as9888-magn) || return 1
+	cat "$d"/in_magn_[xyz]_calibbias "$d"/in_magn_[xyz]_calibscale | tr '\n' ' '
+}
+# the driver's calibbias after probe is 0 0 0; a record's is not. Once the
+# factory phase saved the magnetometer's calibration (/root/magn-cal, a
+# format 2 record), the magnetometer must hold it too
 applied() {
 	local d
 	d=$(dev) || return 1
 	[ "$(cat "$d/in_accel_x_calibbias" "$d/in_accel_y_calibbias" \
-		"$d/in_accel_z_calibbias" | tr '\n' ' ')" != "0 0 0 " ]
+		"$d/in_accel_z_calibbias" | tr '\n' ' ')" != "0 0 0 " ] || return 1
+	[ ! -s /root/magn-cal ] || [ "$(magn_cal)" = "$(cat /root/magn-cal)" ]
 }
 wait_applied() { for _ in $(seq 150); do applied && return 0; sleep 0.2; done; return 1; }
 # rebind: the driver lets the device go and probes it again (defaults)

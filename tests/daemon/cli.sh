@@ -182,6 +182,15 @@ run show --record "$rec" --samples 10
 check "an option a command does not take is named, not its value" \
 	eval '[ $rc -eq 2 ] && says "show does not take --samples" err'
 
+for bad in "--device relative/iio:device0" "--backend sim --device /sys/x" "--device"; do
+	# shellcheck disable=SC2086
+	run restore --record "$rec" $bad
+	check "restore $bad: exit 2 with a message" eval '[ $rc -eq 2 ] && [ -s "$work/err" ]'
+done
+run factory-test $vt --record "$rec" --device /sys/x
+check "--device is restore's: factory-test does not take it" \
+	eval '[ $rc -eq 2 ] && says "factory-test does not take --device" err'
+
 
 # Errors a new integrator meets say what failed, why and what to do
 run show --record "$work/none/cal"

@@ -214,6 +214,86 @@ static void magn_read_back_checked(void **state)
 	assert_non_null(strstr(err, "in_magn_x_calibbias"));
 }
 
+/*
+ * restore --device: the restore unit started for one device may write
+ * only that device's directory. The accelerometer's device gets its part,
+ * the magnetometer left as it was
+ */
+static void device_accel_alone(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char path[256];
+
+	reset(f, true);
+	fake_put(f->magn, "in_magn_x_calibbias", "77\n");
+	write_record(f, "cal2", true, path, sizeof(path));
+	assert_int_equal(iio_restore_device(path, f->dev), 0);
+	expect_accel_restored(f);
+	expect(f->magn, "in_magn_x_calibbias", "77\n");
+	expect(f->magn, "in_magn_z_calibscale", "1.000000\n");
+}
+
+/* ... and the magnetometer's its own, the accelerometer left as it was */
+static void device_magn_alone(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char path[256];
+
+	reset(f, true);
+	write_record(f, "cal2", true, path, sizeof(path));
+	assert_int_equal(iio_restore_device(path, f->magn), 0);
+	expect(f->dev, "in_accel_x_calibbias", "0\n");
+	expect(f->dev, "in_accel_z_calibbias", "0\n");
+	expect(f->magn, "in_magn_x_calibbias", "-100");
+	expect(f->magn, "in_magn_y_calibbias", "149");
+	expect(f->magn, "in_magn_z_calibbias", "-341");
+	expect(f->magn, "in_magn_y_calibscale", "0.985000");
+	/* a format 1 record puts the driver's defaults back */
+	fake_put(f->magn, "in_magn_x_calibscale", "1.500000\n");
+	write_record(f, "cal1", false, path, sizeof(path));
+	assert_int_equal(iio_restore_device(path, f->magn), 0);
+	expect(f->magn, "in_magn_x_calibbias", "0");
+	expect(f->magn, "in_magn_x_calibscale", "1.000000");
+	expect(f->dev, "in_accel_x_calibbias", "0\n");
+}
+
+/* Any other IIO device is refused, and nothing is written */
+static void device_other_refused(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char path[256], name[64];
+
+	reset(f, true);
+	write_record(f, "cal2", true, path, sizeof(path));
+	fake_get(f->magn, "name", name, sizeof(name));
+	fake_put(f->magn, "name", "bmc150_magn\n");
+	assert_int_equal(iio_restore_device(path, f->magn), -ENODEV);
+	fake_put(f->magn, "name", name);
+	expect(f->magn, "in_magn_x_calibbias", "0\n");
+	assert_int_equal(iio_restore_device(path, f->root), -ENOENT);
+	expect(f->dev, "in_accel_x_calibbias", "0\n");
+}
+
+/* The magnetometer of another chip (its EEPROM) is refused */
+static void device_magn_other_chip(void **state)
+{
+	struct fake_sysfs *f = *state;
+	struct calib_record rec = test_record;
+	char buf[RECORD_MAX_SIZE], path[256];
+	int len;
+
+	reset(f, true);
+	memcpy(rec.eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
+	rec.eeprom[AS9888_EE_EHC(1)] ^= 1;
+	rec.magn = magn_example;
+	len = record_format(&rec, buf, sizeof(buf));
+	assert_true(len > 0);
+	fake_put_bytes(f->root, "other", buf, (size_t)len);
+	snprintf(path, sizeof(path), "%s/other", f->root);
+	assert_int_equal(iio_restore_device(path, f->magn), -ENODEV);
+	expect(f->magn, "in_magn_x_calibbias", "0\n");
+}
+
 /* A hard iron the driver's +-4096 LSB cannot cancel is refused, not clipped */
 static void split_refuses_out_of_range(void **state)
 {
@@ -292,6 +372,10 @@ int main(void)
 		cmocka_unit_test(restore_waits_for_magn_device),
 		cmocka_unit_test(magn_write_failure_reported),
 		cmocka_unit_test(magn_read_back_checked),
+		cmocka_unit_test(device_accel_alone),
+		cmocka_unit_test(device_magn_alone),
+		cmocka_unit_test(device_other_refused),
+		cmocka_unit_test(device_magn_other_chip),
 		cmocka_unit_test(split_refuses_out_of_range),
 		cmocka_unit_test(split_recombines),
 	};

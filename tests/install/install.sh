@@ -57,7 +57,7 @@ root=$work/root
 restore="$root/usr/lib/systemd/system/as9888-calibd-restore@.service"
 daemon="$root/usr/lib/systemd/system/as9888-calibd.service"
 check "units: configured paths, none left unsubstituted" \
-	eval 'grep -q "^ExecStart=/usr/sbin/as9888-calibd restore --backend iio --record /var/lib/as9888/calibration \$AS9888_CALIBD_RESTORE_OPTS$" "$restore" &&
+	eval 'grep -q "^ExecStart=/usr/sbin/as9888-calibd restore --backend iio --device %f --record /var/lib/as9888/calibration \$AS9888_CALIBD_RESTORE_OPTS$" "$restore" &&
 	      grep -q "^ExecStart=/usr/sbin/as9888-calibd daemon --backend iio" "$daemon" &&
 	      grep -q "^EnvironmentFile=-/etc/default/as9888-calibd$" "$daemon" &&
 	      ! grep -rq "@[a-z]*@" "$root/usr/lib"'
