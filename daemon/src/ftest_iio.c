@@ -96,12 +96,15 @@ static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
 
 /*
  * An attribute as found: @changed once the test wrote another value to
- * it, which finish() then puts back
+ * it, which finish() then puts back. @file is kept open from the first
+ * read to the end of the test: the test reads and writes these again and
+ * again (iio_attr.h)
  */
 struct saved_attr {
 	char name[IIO_NAME_MAX];
 	char value[IIO_ATTR_MAX];
 	bool changed;
+	struct iio_attr file;
 };
 
 /**
@@ -116,6 +119,8 @@ struct saved_attr {
  * @sample_bytes: size of one buffer sample
  * @saved:	attributes to put back at the end, in this order
  * @n_saved:	how many
+ * @calibbias:	in_accel_{x,y,z}_calibbias, open (their @saved entries')
+ * @enable:	buffer/enable, open once the first level run starts
  * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
  * @comp:	what the driver compensates the samples with: the EEPROM
  *		and the calibration the last DAC write read back
@@ -131,6 +136,8 @@ struct iio_test_dev {
 	unsigned int sample_bytes;
 	struct saved_attr saved[IIO_SAVED_MAX];
 	unsigned int n_saved;
+	struct iio_attr calibbias[AS9888_AXES];
+	struct iio_attr enable;
 	bool int1_seen;
 	struct accel_comp comp;
 };
@@ -156,9 +163,14 @@ static int save_attr(struct iio_test_dev *d, const char *name,
 	s = &d->saved[d->n_saved];
 	if (snprintf(s->name, sizeof(s->name), "%s", name) >= (int)sizeof(s->name))
 		return -ENAMETOOLONG;
-	ret = iio_read_attr_at(d->dfd, name, s->value, sizeof(s->value));
-	if (ret < 0)
+	ret = iio_attr_open(&s->file, d->dfd, name, true);
+	if (ret)
 		return ret;
+	ret = iio_attr_read(&s->file, s->value, sizeof(s->value));
+	if (ret < 0) {
+		iio_attr_close(&s->file);
+		return ret;
+	}
 	s->changed = false;
 	d->n_saved++;
 	*a = s;
@@ -185,7 +197,7 @@ static int change_attr(struct iio_test_dev *d, const char *name,
 		return 0;
 	a->changed = true;
 
-	return iio_write_attr_at(d->dfd, name, value);
+	return iio_attr_write(&a->file, value);
 }
 
 static uint64_t iio_now_ns(struct ftest_ctx *x)
@@ -233,8 +245,8 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 	char err[IIO_ERR_LEN];
 	int ret;
 
-	ret = iio_write_dac(d->dir, &x->res->ee, dac, got, &d->comp.cal, err,
-			    sizeof(err));
+	ret = iio_write_dac(d->dir, d->calibbias, &x->res->ee, dac, got,
+			    &d->comp.cal, err, sizeof(err));
 	if (ret)
 		return iio_failed(x, step, "DAC through calibbias", err, ret);
 	memcpy(x->dac, got, AS9888_AXES);
@@ -680,7 +692,10 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 		return device_taken(x, step, "character device free", "not open elsewhere");
 	if (fd < 0)
 		return ftest_io_failed(x, step, d->chardev, -errno);
-	ret = iio_write_attr_at(d->dfd, "buffer/enable", "1");
+	ret = d->enable.fd >= 0 ? 0 :
+	      iio_attr_open(&d->enable, d->dfd, "buffer/enable", true);
+	if (!ret)
+		ret = iio_attr_write(&d->enable, "1");
 	if (ret) {
 		close(fd);
 		if (ret == -EBUSY)
@@ -688,10 +703,9 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 		return ftest_io_failed(x, step, "buffer/enable", ret);
 	}
 	ret = read_samples(x, fd, n, r, why, whylen);
-	if (ret == -ETIMEDOUT &&
-	    iio_read_attr_at(d->dfd, "buffer/enable", val, sizeof(val)) > 0)
+	if (ret == -ETIMEDOUT && iio_attr_read(&d->enable, val, sizeof(val)) > 0)
 		*taken = !strcmp(val, "0");
-	iio_write_attr_at(d->dfd, "buffer/enable", "0");
+	iio_attr_write(&d->enable, "0");
 	close(fd);
 
 	return ret;
@@ -792,7 +806,7 @@ static void iio_finish(struct ftest_ctx *x)
 
 		if (!a->changed)
 			continue;
-		if (iio_write_attr_at(d->dfd, a->name, a->value))
+		if (iio_attr_write(&a->file, a->value))
 			fprintf(stderr, "as9888-calibd: %s/%s: cannot put back \"%s\"\n",
 				d->dir, a->name, a->value);
 	}
@@ -814,6 +828,7 @@ static int save_calibration(struct iio_test_dev *d, const char **failed)
 			return ret;
 		}
 		a->changed = true;
+		d->calibbias[axis] = a->file;
 	}
 
 	return 0;
@@ -837,6 +852,7 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	struct ftest_ctx x = { .ops = &iio_ops, .o = o, .res = res };
 	char probe[IIO_PATH_MAX];
 	const char *base = strrchr(dir, '/'), *failed;
+	unsigned int i;
 	int ret;
 
 	if (!base || strncmp(base + 1, IIO_DEVICE_PREFIX, strlen(IIO_DEVICE_PREFIX)))
@@ -844,6 +860,7 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	d = calloc(1, sizeof(*d));
 	if (!d)
 		return -ENOMEM;
+	d->enable = IIO_ATTR_CLOSED;
 	snprintf(d->dir, sizeof(d->dir), "%s", dir);
 	snprintf(d->chardev, sizeof(d->chardev), "/dev/%s", base + 1);
 	/* scan_elements/ on every kernel; buffer0/ holds the same files */
@@ -865,6 +882,9 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	x.dev = d;
 	ret = ftest_engine_run(&x);
 out:
+	for (i = 0; i < d->n_saved; i++)
+		iio_attr_close(&d->saved[i].file);
+	iio_attr_close(&d->enable);
 	if (d->dfd >= 0)
 		close(d->dfd);
 	free(d);

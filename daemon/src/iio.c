@@ -296,66 +296,78 @@ int iio_apply_device(const char *dir, const struct calib_record *rec,
  */
 
 /*
- * @name below @dir as text into @buf: 0, or -errno with the attribute and
- * the reason in @err
+ * Where the calibration's attributes are: below @dir, opened as @dfd
+ * (-1: by path), or kept open in @files (the factory test's)
  */
-static int read_text(int dfd, const char *dir, const char *name, char *buf,
+struct cal_where {
+	const char *dir;
+	int dfd;
+	const struct iio_attr *files;
+};
+
+/*
+ * Calibbias of @axis as text into @buf: 0, or -errno with the attribute
+ * and the reason in @err
+ */
+static int read_text(const struct cal_where *w, int axis, char *buf,
 		     size_t size, char *err, size_t errlen)
 {
-	int ret = dfd < 0 ? iio_read_attr(dir, name, buf, size) :
-		  iio_read_attr_at(dfd, name, buf, size);
+	const char *name = iio_calibbias_attr[axis];
+	int ret;
 
+	if (w->files)
+		ret = iio_attr_read(&w->files[axis], buf, size);
+	else if (w->dfd < 0)
+		ret = iio_read_attr(w->dir, name, buf, size);
+	else
+		ret = iio_read_attr_at(w->dfd, name, buf, size);
 	if (ret < 0)
-		snprintf(err, errlen, "%s/%s: cannot read: %s", dir, name,
+		snprintf(err, errlen, "%s/%s: cannot read: %s", w->dir, name,
 			 strerror(-ret));
 
 	return ret < 0 ? ret : 0;
 }
 
-/* @name holds a decimal integer within @min..@max */
-static int read_number(int dfd, const char *dir, const char *name, long min,
-		       long max, long *v, char *err, size_t errlen)
+static int write_text(const struct cal_where *w, int axis, const char *val,
+		      char *err, size_t errlen)
 {
-	char val[IIO_ATTR_MAX];
+	const char *name = iio_calibbias_attr[axis];
 	int ret;
 
-	ret = read_text(dfd, dir, name, val, sizeof(val), err, errlen);
+	if (w->files)
+		ret = iio_attr_write(&w->files[axis], val);
+	else if (w->dfd < 0)
+		ret = iio_write_attr(w->dir, name, val);
+	else
+		ret = iio_write_attr_at(w->dfd, name, val);
 	if (ret)
-		return ret;
-	ret = iio_int_parse(val, min, max, v);
-	if (ret)
-		snprintf(err, errlen, "%s/%s reads \"%s\": %s (%ld..%ld)", dir,
-			 name, val, iio_value_strerror(ret), min, max);
+		snprintf(err, errlen, "%s/%s: cannot write \"%s\": %s", w->dir,
+			 name, val, strerror(-ret));
 
 	return ret;
 }
 
-static int write_text(int dfd, const char *dir, const char *name,
-		      const char *val, char *err, size_t errlen)
-{
-	int ret = dfd < 0 ? iio_write_attr(dir, name, val) :
-		  iio_write_attr_at(dfd, name, val);
-
-	if (ret)
-		snprintf(err, errlen, "%s/%s: cannot write \"%s\": %s", dir, name,
-			 val, strerror(-ret));
-
-	return ret;
-}
-
-static int read_cal(int dfd, const char *dir, struct as9888_accel_cal *cal,
+static int read_cal(const struct cal_where *w, struct as9888_accel_cal *cal,
 		    char *err, size_t errlen)
 {
 	struct as9888_accel_cal c;
+	char val[IIO_ATTR_MAX];
 	long v;
 	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = read_number(dfd, dir, iio_calibbias_attr[axis],
-				  -AS9888_CALIBBIAS_MAX, AS9888_CALIBBIAS_MAX,
-				  &v, err, errlen);
+		ret = read_text(w, axis, val, sizeof(val), err, errlen);
 		if (ret)
 			return ret;
+		ret = iio_int_parse(val, -AS9888_CALIBBIAS_MAX,
+				    AS9888_CALIBBIAS_MAX, &v);
+		if (ret) {
+			snprintf(err, errlen, "%s/%s reads \"%s\": %s (%d..%d)",
+				 w->dir, iio_calibbias_attr[axis], val,
+				 iio_value_strerror(ret), -AS9888_CALIBBIAS_MAX,
+				 AS9888_CALIBBIAS_MAX);
+			return ret;
+		}
 		c.bias[axis] = (int32_t)v;
 	}
 	*cal = c;
@@ -363,9 +375,8 @@ static int read_cal(int dfd, const char *dir, struct as9888_accel_cal *cal,
 	return 0;
 }
 
-
-/* Write @cal and read it back into @back, through @dfd */
-static int write_cal(int dfd, const char *dir,
+/* Write @cal and read it back into @back */
+static int write_cal(const struct cal_where *w,
 		     const struct as9888_accel_cal *cal,
 		     struct as9888_accel_cal *back, char *err, size_t errlen)
 {
@@ -374,40 +385,43 @@ static int write_cal(int dfd, const char *dir,
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		snprintf(val, sizeof(val), "%d", cal->bias[axis]);
-		ret = write_text(dfd, dir, iio_calibbias_attr[axis], val, err,
-				 errlen);
+		ret = write_text(w, axis, val, err, errlen);
 		if (ret)
 			return ret;
 	}
 
-	return read_cal(dfd, dir, back, err, errlen);
+	return read_cal(w, back, err, errlen);
 }
 
 /*
  * @dir opened for the calibration's attributes, read or written in a row,
- * each resolving the attribute's name alone; -1 (by path) when it cannot
- * be
+ * each resolving the attribute's name alone; by path (dfd -1) when it
+ * cannot be
  */
-static int cal_dir(const char *dir)
+static void cal_open(struct cal_where *w, const char *dir)
 {
-	int dfd = iio_dir_open(dir);
-
-	return dfd < 0 ? -1 : dfd;
+	w->dir = dir;
+	w->dfd = iio_dir_open(dir);
+	if (w->dfd < 0)
+		w->dfd = -1;
+	w->files = NULL;
 }
 
-static void cal_dir_close(int dfd)
+static void cal_close(struct cal_where *w)
 {
-	if (dfd >= 0)
-		close(dfd);
+	if (w->dfd >= 0)
+		close(w->dfd);
 }
 
 int iio_read_accel_cal(const char *dir, struct as9888_accel_cal *cal,
 		       char *err, size_t errlen)
 {
-	int dfd = cal_dir(dir), ret;
+	struct cal_where w;
+	int ret;
 
-	ret = read_cal(dfd, dir, cal, err, errlen);
-	cal_dir_close(dfd);
+	cal_open(&w, dir);
+	ret = read_cal(&w, cal, err, errlen);
+	cal_close(&w);
 
 	return ret;
 }
@@ -417,17 +431,19 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 {
 	struct as9888_accel_cal old, got;
 	char why[IIO_ERR_LEN];
-	int axis, dfd = cal_dir(dir), ret;
+	struct cal_where w;
+	int axis, ret;
 
 	/*
 	 * All or nothing: when a value fails (a bus error in the driver's
 	 * write), the ones written before it go back to what was in effect,
 	 * so that the device never runs on part of a calibration
 	 */
-	ret = read_cal(dfd, dir, &old, err, errlen);
+	cal_open(&w, dir);
+	ret = read_cal(&w, &old, err, errlen);
 	if (ret)
 		goto out;
-	ret = write_cal(dfd, dir, cal, &got, err, errlen);
+	ret = write_cal(&w, cal, &got, err, errlen);
 	for (axis = 0; !ret && axis < AS9888_AXES; axis++)
 		if (got.bias[axis] != cal->bias[axis]) {
 			snprintf(err, errlen, "%s/%s: wrote %d, reads back %d",
@@ -435,7 +451,7 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 				 got.bias[axis]);
 			ret = -EIO;
 		}
-	if (ret && write_cal(dfd, dir, &old, &got, why, sizeof(why))) {
+	if (ret && write_cal(&w, &old, &got, why, sizeof(why))) {
 		size_t len = strlen(err);
 
 		snprintf(err + len, errlen - len,
@@ -443,17 +459,19 @@ int iio_write_accel_cal(const char *dir, const struct as9888_accel_cal *cal,
 			 why);
 	}
 out:
-	cal_dir_close(dfd);
+	cal_close(&w);
 
 	return ret;
 }
 
-int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
+int iio_write_dac(const char *dir, const struct iio_attr *files,
+		  const struct as9888_eeprom *ee,
 		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
 		  struct as9888_accel_cal *now, char *err, size_t errlen)
 {
 	struct as9888_accel_cal cal, back;
-	int axis, dfd, ret;
+	struct cal_where w = { .dir = dir, .dfd = -1, .files = files };
+	int axis, ret;
 
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		ret = as9888_dac_bias(&ee->axis[axis], da[axis], &cal.bias[axis]);
@@ -465,9 +483,11 @@ int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
 			return ret;
 		}
 	}
-	dfd = cal_dir(dir);
-	ret = write_cal(dfd, dir, &cal, &back, err, errlen);
-	cal_dir_close(dfd);
+	if (!files)
+		cal_open(&w, dir);
+	ret = write_cal(&w, &cal, &back, err, errlen);
+	if (!files)
+		cal_close(&w);
 	if (ret)
 		return ret;
 	for (axis = 0; axis < AS9888_AXES; axis++) {

@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "iio_attr.h"
 #include "record.h"
 
 #define IIO_PATH_MAX	512
@@ -105,10 +106,14 @@ int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN]);
  * Run the chip with the DAC register values @da: write the calibbias
  * values whose DAC they are (as9888_dac_bias()) and read them back; @got
  * receives the DAC values of what reads back (as9888_bias_dac()) and
- * @now the calibration read back, the one in effect. 0, or -errno with
- * the attribute and the reason in @err.
+ * @now the calibration read back, the one in effect. The attributes are
+ * reached through @files (in_accel_{x,y,z}_calibbias kept open, a
+ * caller's that writes them often) or, with @files NULL, by name below
+ * @dir, which names them in messages either way. 0, or -errno with the
+ * attribute and the reason in @err.
  */
-int iio_write_dac(const char *dir, const struct as9888_eeprom *ee,
+int iio_write_dac(const char *dir, const struct iio_attr *files,
+		  const struct as9888_eeprom *ee,
 		  const uint8_t da[AS9888_AXES], uint8_t got[AS9888_AXES],
 		  struct as9888_accel_cal *now, char *err, size_t errlen);
 

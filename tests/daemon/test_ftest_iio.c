@@ -505,6 +505,32 @@ static void selftest_without_magn_fails(void **state)
 	unsetenv("AS9888_DEBUGFS");
 }
 
+/*
+ * INT1 not wired to the driver: no data-ready trigger of this device (only
+ * another's); step 3 stops at 3-1.trigger, saying to use the raw backend,
+ * and the attributes go back
+ */
+static void no_trigger_fails(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+	char dir[512];
+
+	snprintf(dir, sizeof(dir), "%s/bus/iio/devices/trigger0", f->root);
+	fake_put(dir, "name", "as9888-dev7\n");
+	put_initial(f);
+	run(f, &res);
+	fake_put(dir, "name", "as9888-dev0\n");
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_string_equal(j->id, "3-1.trigger");
+	assert_non_null(strstr(j->measured, "INT1 is not wired to the driver"));
+	assert_non_null(strstr(j->measured, "--backend raw"));
+	all_put_back(f);
+	ftest_result_free(&res);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -515,6 +541,7 @@ int main(void)
 		cmocka_unit_test(selftest_through_magn),
 		cmocka_unit_test(selftest_fail_through_magn),
 		cmocka_unit_test(selftest_without_magn_fails),
+		cmocka_unit_test(no_trigger_fails),
 	};
 
 	return cmocka_run_group_tests_name("ftest-iio", tests, setup,

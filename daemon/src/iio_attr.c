@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: GPL-2.0
+/* A sysfs attribute kept open (iio_attr.h). */
+#include <errno.h>
+#include <fcntl.h>
+#include <linux/magic.h>
+#include <string.h>
+#include <sys/statfs.h>
+#include <unistd.h>
+
+#include "iio_attr.h"
+
+int iio_attr_open(struct iio_attr *a, int dfd, const char *name,
+		  bool writable)
+{
+	struct statfs fs;
+	int fd;
+
+	fd = openat(dfd, name, (writable ? O_RDWR : O_RDONLY) | O_CLOEXEC);
+	if (fd < 0)
+		return -errno;
+	a->fd = fd;
+	a->plain = fstatfs(fd, &fs) || fs.f_type != SYSFS_MAGIC;
+
+	return 0;
+}
+
+void iio_attr_close(struct iio_attr *a)
+{
+	if (a->fd >= 0)
+		close(a->fd);
+	a->fd = -1;
+}
+
+int iio_attr_read(const struct iio_attr *a, char *buf, size_t size)
+{
+	ssize_t n;
+
+	/* sysfs makes the value anew for a read from offset 0 */
+	n = pread(a->fd, buf, size - 1, 0);
+	if (n < 0)
+		return -errno;
+	while (n > 0 && buf[n - 1] == '\n')
+		n--;
+	buf[n] = '\0';
+
+	return (int)n;
+}
+
+int iio_attr_write(const struct iio_attr *a, const char *value)
+{
+	size_t len = strlen(value);
+	ssize_t n;
+
+	/* sysfs hands a write to the attribute whole, at any offset */
+	n = pwrite(a->fd, value, len, 0);
+	if (n < 0)
+		return -errno;
+	if ((size_t)n != len)
+		return -EIO;
+	if (a->plain && ftruncate(a->fd, (off_t)len))
+		return -errno;
+
+	return 0;
+}
