@@ -21,10 +21,16 @@
  *           (2-4.magn), naming the directory it is missing from
  *   step 3  samples from the accelerometer device's buffer on the
  *           driver's data-ready trigger (INT1, "as9888-dev<N>"):
- *           accelerometer X, Y, Z and the temperature code; the
- *           driver checks ST1 and EMPT of every sample and delivers none
- *           that fails, and the DAC goes through calibbias. The filter is
- *           in_accel_oversampling_ratio: 1 off, 4 on (ALPF)
+ *           accelerometer X, Y, Z, the temperature code and the
+ *           timestamp; the driver checks ST1 and EMPT of every sample and
+ *           delivers none that fails, and the DAC goes through calibbias.
+ *           The filter is in_accel_oversampling_ratio: 1 off, 4 on (ALPF).
+ *           The capture runs from the first level run to the end of the
+ *           test (the driver takes a calibbias write while it runs, between
+ *           two samples); each run keeps only samples measured after it
+ *           began (timestamp more than one sample period after its start,
+ *           the period holding a measurement), so none was measured with
+ *           the DAC before a write
  *
  * The driver delivers compensated accelerometer samples (1024 per g); the
  * application note judges and averages the chip's own output. The test
@@ -70,6 +76,10 @@
 #define IIO_TEST_RATE_MAX_HZ	100000
 /* Buffer length during the test, in samples */
 #define IIO_TEST_BUFFER_LEN	"256"
+/* Samples taken from the buffer in one read */
+#define IIO_READ_SAMPLES	32
+/* The largest sample of the test's channels, in bytes */
+#define IIO_SAMPLE_MAX		32
 /*
  * The longest wait for the next sample: longer means the capture stalled.
  * A busy system only slows a run down; it does not fail it
@@ -83,7 +93,9 @@
 #define IIO_RETAKE_MAX		2
 #define IIO_SAVED_MAX		32
 #define IIO_NAME_MAX		64
-#define IIO_SCAN_CHANNELS	4
+#define IIO_SCAN_CHANNELS	5
+#define IIO_SCAN_TEMP		3
+#define IIO_SCAN_TIMESTAMP	4
 #define IIO_OVERSAMPLING_ATTR	"in_accel_oversampling_ratio"
 #define IIO_OVERSAMPLING_OFF	"1"
 #define IIO_OVERSAMPLING_ALPF	"4"
@@ -91,7 +103,22 @@
 
 /* The buffer's channels the test uses, in the order of this table */
 static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
-	"in_accel_x", "in_accel_y", "in_accel_z", "in_temp",
+	[0] = "in_accel_x", [1] = "in_accel_y", [2] = "in_accel_z",
+	[IIO_SCAN_TEMP] = "in_temp", [IIO_SCAN_TIMESTAMP] = "in_timestamp",
+};
+
+/* current_timestamp_clock's names (the IIO core's) */
+static const struct {
+	const char *name;
+	clockid_t id;
+} ts_clocks[] = {
+	{ "realtime", CLOCK_REALTIME },
+	{ "monotonic", CLOCK_MONOTONIC },
+	{ "monotonic_raw", CLOCK_MONOTONIC_RAW },
+	{ "realtime_coarse", CLOCK_REALTIME_COARSE },
+	{ "monotonic_coarse", CLOCK_MONOTONIC_COARSE },
+	{ "boottime", CLOCK_BOOTTIME },
+	{ "tai", CLOCK_TAI },
 };
 
 /*
@@ -121,6 +148,9 @@ struct saved_attr {
  * @n_saved:	how many
  * @calibbias:	in_accel_{x,y,z}_calibbias, open (their @saved entries')
  * @enable:	buffer/enable, open once the first level run starts
+ * @capture_fd:	the character device while the test's capture runs, else -1
+ * @ts_clock:	the clock of the samples' timestamps (current_timestamp_clock)
+ * @period_ns:	the sample period at the test's rate
  * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
  * @comp:	what the driver compensates the samples with: the EEPROM
  *		and the calibration the last DAC write read back
@@ -138,6 +168,9 @@ struct iio_test_dev {
 	unsigned int n_saved;
 	struct iio_attr calibbias[AS9888_AXES];
 	struct iio_attr enable;
+	int capture_fd;
+	clockid_t ts_clock;
+	int64_t period_ns;
 	bool int1_seen;
 	struct accel_comp comp;
 };
@@ -551,7 +584,10 @@ static int setup_scan(struct ftest_ctx *x)
 	return 0;
 }
 
-/* The fastest rate the driver offers now, as text into @rate */
+/*
+ * The fastest rate the driver offers now, as text into @rate; its period
+ * into d->period_ns
+ */
 static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 {
 	struct iio_test_dev *d = x->dev;
@@ -573,8 +609,33 @@ static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 		return ret;
 	}
 	snprintf(rate, size, "%ld", hz);
+	d->period_ns = (int64_t)(NS_PER_MS * 1000 / (uint64_t)hz);
 
 	return 0;
+}
+
+/* current_timestamp_clock: the clock the samples' timestamps are on */
+static int timestamp_clock(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	char val[IIO_ATTR_MAX];
+	size_t i;
+	int ret;
+
+	ret = iio_read_attr_at(d->dfd, "current_timestamp_clock", val,
+			       sizeof(val));
+	if (ret < 0)
+		return ftest_io_failed(x, "3-1", "current_timestamp_clock", ret);
+	for (i = 0; i < sizeof(ts_clocks) / sizeof(ts_clocks[0]); i++)
+		if (!strcmp(val, ts_clocks[i].name)) {
+			d->ts_clock = ts_clocks[i].id;
+			return 0;
+		}
+	report_add(&x->res->report, "3-1", "current_timestamp_clock",
+		   JUDGMENT_FAIL, NULL, "\"%s\": not a clock of the IIO core", val);
+	x->stop = true;
+
+	return -EINVAL;
 }
 
 /* The buffer as the test uses it: its channels, trigger, length and rate */
@@ -617,30 +678,39 @@ static int iio_level_setup(struct ftest_ctx *x)
 			 "none: INT1 is not wired to the driver (%s); use --backend raw",
 			 *d->trigger ? d->trigger : d->dir))
 		return -ENODEV;
+	ret = timestamp_clock(x);
 
-	return buffer_setup(x);
+	return ret ? ret : buffer_setup(x);
+}
+
+/* Now on the samples' clock, ns */
+static int64_t ts_now(const struct iio_test_dev *d)
+{
+	struct timespec ts;
+
+	clock_gettime(d->ts_clock, &ts);
+
+	return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
 }
 
 /*
- * Read @n samples from @fd into @r, each taken back to the chip's own
- * output: -ERANGE with @why for a sample that cannot be, -ETIMEDOUT when
- * no sample comes for IIO_SAMPLE_STALL_MS
+ * Read @n samples from the capture into @r, each taken back to the chip's
+ * own output, skipping those timestamped at or before @after (ns on
+ * d->ts_clock): -ERANGE with @why for a sample that cannot be taken back,
+ * -ETIMEDOUT when no sample comes for IIO_SAMPLE_STALL_MS
  */
-static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
+static int read_samples(struct ftest_ctx *x, uint32_t n, int64_t after,
 			struct level_run *r, char *why, size_t whylen)
 {
 	struct iio_test_dev *d = x->dev;
-	uint8_t buf[IIO_SCAN_CHANNELS * sizeof(uint32_t)];
+	uint8_t buf[IIO_READ_SAMPLES * IIO_SAMPLE_MAX];
 	uint64_t deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
-	size_t have = 0;
+	size_t have = 0, used;
 
 	while (r->n < n) {
-		struct pollfd pfd = { .fd = fd, .events = POLLIN };
+		struct pollfd pfd = { .fd = d->capture_fd, .events = POLLIN };
 		uint64_t now = iio_now_ns(x);
-		struct chip_sample s = { 0 };
-		int16_t out[AS9888_AXES];
 		ssize_t got;
-		int axis;
 
 		if (now >= deadline)
 			return -ETIMEDOUT;
@@ -649,31 +719,53 @@ static int read_samples(struct ftest_ctx *x, int fd, uint32_t n,
 				continue;
 			return -errno;
 		}
-		got = read(fd, buf + have, d->sample_bytes - have);
+		got = read(d->capture_fd, buf + have, sizeof(buf) - have);
 		if (got < 0) {
 			if (errno == EAGAIN || errno == EINTR)
 				continue;
 			return -errno;
 		}
 		have += (size_t)got;
-		if (have < d->sample_bytes)
-			continue;
-		have = 0;
-		deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
-		for (axis = 0; axis < AS9888_AXES; axis++)
-			out[axis] = (int16_t)iio_scan_value(&d->layout[axis], buf);
-		s.tmps = (uint8_t)iio_scan_value(&d->layout[AS9888_AXES], buf);
-		if (accel_raw_recover(&d->comp, out, s.tmps, s.acc, why, whylen))
-			return -ERANGE;
-		level_run_add(r, &s);
+		for (used = 0; have - used >= d->sample_bytes && r->n < n;
+		     used += d->sample_bytes) {
+			const uint8_t *p = buf + used;
+			struct chip_sample cs = { 0 };
+			int16_t out[AS9888_AXES];
+			int axis;
+
+			deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
+			if (iio_scan_value64(&d->layout[IIO_SCAN_TIMESTAMP], p) <= after)
+				continue;
+			for (axis = 0; axis < AS9888_AXES; axis++)
+				out[axis] = (int16_t)iio_scan_value(&d->layout[axis], p);
+			cs.tmps = (uint8_t)iio_scan_value(&d->layout[IIO_SCAN_TEMP], p);
+			if (accel_raw_recover(&d->comp, out, cs.tmps, cs.acc, why,
+					      whylen))
+				return -ERANGE;
+			level_run_add(r, &cs);
+		}
+		memmove(buf, buf + used, have - used);
+		have -= used;
 	}
 
 	return 0;
 }
 
+/* The test's capture ends: the buffer off, the character device closed */
+static void capture_stop(struct iio_test_dev *d)
+{
+	if (d->capture_fd < 0)
+		return;
+	iio_attr_write(&d->enable, "0");
+	close(d->capture_fd);
+	d->capture_fd = -1;
+}
+
 /*
- * One capture of @n samples into @r: -ETIMEDOUT when it stalls, with
- * *@taken set when the buffer was found off (another program turned it off)
+ * @n samples measured from now on into @r, the capture started when it is
+ * not running: -ETIMEDOUT when it stalls, with *@taken set when the buffer
+ * was found off (another program turned it off); the capture stops on any
+ * error
  */
 static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 			struct level_run *r, char *why, size_t whylen,
@@ -681,32 +773,42 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 {
 	struct iio_test_dev *d = x->dev;
 	char val[IIO_ATTR_MAX];
+	int64_t start = ts_now(d);
 	int fd, ret;
 
 	level_run_init(r);
 	r->status_by_driver = true;
 	*taken = false;
-	/* a program that took the device since step 1-4 stops the test too */
-	fd = open(d->chardev, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-	if (fd < 0 && errno == EBUSY)
-		return device_taken(x, step, "character device free", "not open elsewhere");
-	if (fd < 0)
-		return ftest_io_failed(x, step, d->chardev, -errno);
-	ret = d->enable.fd >= 0 ? 0 :
-	      iio_attr_open(&d->enable, d->dfd, "buffer/enable", true);
-	if (!ret)
-		ret = iio_attr_write(&d->enable, "1");
-	if (ret) {
-		close(fd);
-		if (ret == -EBUSY)
-			return device_taken(x, step, "buffer free", "not enabled elsewhere");
-		return ftest_io_failed(x, step, "buffer/enable", ret);
+	if (d->capture_fd < 0) {
+		/* a program that took the device since step 1-4 stops the test too */
+		fd = open(d->chardev, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+		if (fd < 0 && errno == EBUSY)
+			return device_taken(x, step, "character device free",
+					    "not open elsewhere");
+		if (fd < 0)
+			return ftest_io_failed(x, step, d->chardev, -errno);
+		ret = d->enable.fd >= 0 ? 0 :
+		      iio_attr_open(&d->enable, d->dfd, "buffer/enable", true);
+		if (!ret)
+			ret = iio_attr_write(&d->enable, "1");
+		if (ret) {
+			close(fd);
+			if (ret == -EBUSY)
+				return device_taken(x, step, "buffer free",
+						    "not enabled elsewhere");
+			return ftest_io_failed(x, step, "buffer/enable", ret);
+		}
+		d->capture_fd = fd;
 	}
-	ret = read_samples(x, fd, n, r, why, whylen);
+	/*
+	 * A sample timestamped more than a period after @start was measured
+	 * after it: the driver's periods hold a measurement
+	 */
+	ret = read_samples(x, n, start + d->period_ns, r, why, whylen);
 	if (ret == -ETIMEDOUT && iio_attr_read(&d->enable, val, sizeof(val)) > 0)
 		*taken = !strcmp(val, "0");
-	iio_attr_write(&d->enable, "0");
-	close(fd);
+	if (ret)
+		capture_stop(d);
 
 	return ret;
 }
@@ -723,7 +825,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 
 	/* the calibbias in effect: read back with the last DAC written */
 	memcpy(d->comp.da, x->dac, AS9888_AXES);
-	if (d->sample_bytes > IIO_SCAN_CHANNELS * sizeof(uint32_t))
+	if (d->sample_bytes > IIO_SAMPLE_MAX)
 		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
 	for (;;) {
 		ret = collect_once(x, n, step, r, why, sizeof(why), &taken);
@@ -797,10 +899,12 @@ static void iio_finish(struct ftest_ctx *x)
 	unsigned int i;
 
 	/*
-	 * Each level run turned its own capture off; the buffer is not
-	 * touched here: when the test stopped because another program was
-	 * capturing, that capture goes on
+	 * The test's own capture ends first (scan elements, trigger and
+	 * length change only with the buffer off); a buffer the test did not
+	 * enable is not touched: when the test stopped because another
+	 * program was capturing, that capture goes on
 	 */
+	capture_stop(d);
 	for (i = 0; i < d->n_saved; i++) {
 		const struct saved_attr *a = &d->saved[i];
 
@@ -861,6 +965,7 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	if (!d)
 		return -ENOMEM;
 	d->enable = IIO_ATTR_CLOSED;
+	d->capture_fd = -1;
 	snprintf(d->dir, sizeof(d->dir), "%s", dir);
 	snprintf(d->chardev, sizeof(d->chardev), "/dev/%s", base + 1);
 	/* scan_elements/ on every kernel; buffer0/ holds the same files */
@@ -882,6 +987,7 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	x.dev = d;
 	ret = ftest_engine_run(&x);
 out:
+	capture_stop(d);
 	for (i = 0; i < d->n_saved; i++)
 		iio_attr_close(&d->saved[i].file);
 	iio_attr_close(&d->enable);

@@ -20,7 +20,7 @@ int iio_scan_parse_type(const char *s, struct iio_scan_channel *c)
 		return -EINVAL;
 	if ((sign != 's' && sign != 'u') ||
 	    (strcmp(endian, "le") && strcmp(endian, "be")) ||
-	    (storage != 8 && storage != 16 && storage != 32) ||
+	    (storage != 8 && storage != 16 && storage != 32 && storage != 64) ||
 	    !realbits || realbits > storage || shift > storage - realbits)
 		return -EINVAL;
 	c->realbits = realbits;
@@ -34,7 +34,7 @@ int iio_scan_parse_type(const char *s, struct iio_scan_channel *c)
 
 int iio_scan_layout(struct iio_scan_channel *c, unsigned int n)
 {
-	unsigned int order[IIO_SCAN_MAX], i, j, offset = 0;
+	unsigned int order[IIO_SCAN_MAX], i, j, offset = 0, largest = 1;
 
 	if (n > IIO_SCAN_MAX)
 		return -EINVAL;
@@ -52,25 +52,35 @@ int iio_scan_layout(struct iio_scan_channel *c, unsigned int n)
 		offset = (offset + ch->bytes - 1) / ch->bytes * ch->bytes;
 		ch->offset = offset;
 		offset += ch->bytes;
+		if (ch->bytes > largest)
+			largest = ch->bytes;
 	}
 
-	return (int)offset;
+	/* a sample is padded to its largest channel's alignment */
+	return (int)((offset + largest - 1) / largest * largest);
 }
 
-int32_t iio_scan_value(const struct iio_scan_channel *c, const uint8_t *sample)
+int64_t iio_scan_value64(const struct iio_scan_channel *c,
+			 const uint8_t *sample)
 {
 	const uint8_t *p = sample + c->offset;
-	uint32_t v = 0, mask;
+	uint64_t v = 0, mask;
 	unsigned int i;
 
 	for (i = 0; i < c->bytes; i++)
 		v = v << BITS_PER_BYTE |
 		    p[c->big_endian ? i : c->bytes - 1 - i];
 	v >>= c->shift;
-	mask = c->realbits == 32 ? UINT32_MAX : (1U << c->realbits) - 1;
+	mask = c->realbits == 64 ? UINT64_MAX : (1ULL << c->realbits) - 1;
 	v &= mask;
-	if (c->is_signed && c->realbits < 32 && (v & (1U << (c->realbits - 1))))
+	if (c->is_signed && c->realbits < 64 &&
+	    (v & (1ULL << (c->realbits - 1))))
 		v |= ~mask;
 
-	return (int32_t)v;
+	return (int64_t)v;
+}
+
+int32_t iio_scan_value(const struct iio_scan_channel *c, const uint8_t *sample)
+{
+	return (int32_t)iio_scan_value64(c, sample);
 }

@@ -102,6 +102,7 @@ static int setup(void **state)
 	}
 	put_initial(f);
 	fake_put(f->dev, "sampling_frequency_available", "1 2 5 10 20 25 50 100 125\n");
+	fake_put(f->dev, "current_timestamp_clock", "realtime\n");
 
 	return 0;
 }
@@ -531,6 +532,29 @@ static void no_trigger_fails(void **state)
 	ftest_result_free(&res);
 }
 
+/*
+ * The samples' timestamps are on a clock the test does not know: step 3
+ * stops at 3-1 naming the attribute, before any capture
+ */
+static void unknown_timestamp_clock_stops(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+
+	put_initial(f);
+	fake_put(f->dev, "current_timestamp_clock", "sundial\n");
+	run(f, &res);
+	fake_put(f->dev, "current_timestamp_clock", "realtime\n");
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_string_equal(j->step, "3-1");
+	assert_string_equal(j->name, "current_timestamp_clock");
+	assert_non_null(strstr(j->measured, "sundial"));
+	all_put_back(f);
+	ftest_result_free(&res);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -542,6 +566,7 @@ int main(void)
 		cmocka_unit_test(selftest_fail_through_magn),
 		cmocka_unit_test(selftest_without_magn_fails),
 		cmocka_unit_test(no_trigger_fails),
+		cmocka_unit_test(unknown_timestamp_clock_stops),
 	};
 
 	return cmocka_run_group_tests_name("ftest-iio", tests, setup,

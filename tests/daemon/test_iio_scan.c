@@ -31,7 +31,10 @@ static void type_accepted(void **state)
 	assert_true(c.big_endian);
 	assert_int_equal(c.shift, 4);
 
-	assert_int_equal(iio_scan_parse_type("le:s64/64>>0", &c), -EINVAL);
+	assert_int_equal(iio_scan_parse_type("le:s64/64>>0", &c), 0);
+	assert_int_equal(c.bytes, 8);
+	assert_int_equal(c.realbits, 64);
+	assert_int_equal(iio_scan_parse_type("le:s65/64>>0", &c), -EINVAL);
 	assert_int_equal(iio_scan_parse_type("le:u32/32>>0", &c), 0);
 	assert_int_equal(c.bytes, 4);
 }
@@ -77,10 +80,29 @@ static void layout_aligns(void **state)
 		{ .index = 2, .bytes = 2 },
 	};
 
-	assert_int_equal(iio_scan_layout(c, 3), 10);
+	/* 10 bytes of channels, the sample padded to 4 as the IIO core does */
+	assert_int_equal(iio_scan_layout(c, 3), 12);
 	assert_int_equal(c[0].offset, 0);
 	assert_int_equal(c[1].offset, 4);
 	assert_int_equal(c[2].offset, 8);
+}
+
+/* The driver's buffer with its timestamp: 4 x 16 bits, then 64 bits at 8 */
+static void layout_timestamp(void **state)
+{
+	struct iio_scan_channel c[5] = {
+		{ .index = 0, .bytes = 2 }, { .index = 1, .bytes = 2 },
+		{ .index = 2, .bytes = 2 }, { .index = 6, .bytes = 2 },
+		{ .index = 7, .bytes = 8 },
+	};
+
+	assert_int_equal(iio_scan_layout(c, 5), 16);
+	assert_int_equal(c[4].offset, 8);
+	assert_int_equal(iio_scan_layout(c, 3), 6);
+	/* one 16-bit channel and the timestamp: 2 bytes, padding, 8 */
+	c[1] = c[4];
+	assert_int_equal(iio_scan_layout(c, 2), 16);
+	assert_int_equal(c[1].offset, 8);
 }
 
 static void layout_refuses_duplicate_index(void **state)
@@ -119,6 +141,29 @@ static void values(void **state)
 	assert_int_equal(iio_scan_value(&c, sample), -16);
 }
 
+/* A timestamp: le:s64/64>>0, nanoseconds beyond 32 bits */
+static void values64(void **state)
+{
+	static const uint8_t sample[] = {
+		0x15, 0xcd, 0x5b, 0x07, 0x01, 0x00, 0x00, 0x00,
+		0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff,
+	};
+	struct iio_scan_channel c;
+
+	assert_int_equal(iio_scan_parse_type("le:s64/64>>0", &c), 0);
+	c.offset = 0;
+	assert_true(iio_scan_value64(&c, sample) == 0x1075bcd15LL);
+	c.offset = 8;
+	assert_true(iio_scan_value64(&c, sample) == -1);
+	/* a 16-bit channel the same through both */
+	c = (struct iio_scan_channel){ .offset = 1, .bytes = 2, .realbits = 16,
+				       .is_signed = true };
+	assert_true(iio_scan_value64(&c, sample) == (int16_t)0x5bcd);
+	assert_int_equal(iio_scan_value(&c, sample), (int16_t)0x5bcd);
+	c.offset = 8;
+	assert_true(iio_scan_value64(&c, sample) == -1);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -126,8 +171,10 @@ int main(void)
 		cmocka_unit_test(type_refused),
 		cmocka_unit_test(layout_follows_index),
 		cmocka_unit_test(layout_aligns),
+		cmocka_unit_test(layout_timestamp),
 		cmocka_unit_test(layout_refuses_duplicate_index),
 		cmocka_unit_test(values),
+		cmocka_unit_test(values64),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
