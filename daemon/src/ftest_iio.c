@@ -584,6 +584,16 @@ static int setup_scan(struct ftest_ctx *x)
 	return 0;
 }
 
+/* An attribute of the buffer's set-up, read; its failure fails 3-1 */
+static int read_setup_attr(struct ftest_ctx *x, const char *name, char *val,
+			   size_t size)
+{
+	struct iio_test_dev *d = x->dev;
+	int ret = iio_read_attr_at(d->dfd, name, val, size);
+
+	return ret < 0 ? ftest_io_failed(x, "3-1", name, ret) : 0;
+}
+
 /*
  * The fastest rate the driver offers now, as text into @rate; its period
  * into d->period_ns
@@ -595,11 +605,10 @@ static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 	long hz;
 	int ret;
 
-	ret = iio_read_attr_at(d->dfd, "sampling_frequency_available", val,
-			       sizeof(val));
-	if (ret < 0)
-		return ftest_io_failed(x, "3-1", "sampling_frequency_available",
-				       ret);
+	ret = read_setup_attr(x, "sampling_frequency_available", val,
+			      sizeof(val));
+	if (ret)
+		return ret;
 	ret = iio_parse_rate_max(val, IIO_TEST_RATE_MAX_HZ, &hz);
 	if (ret) {
 		report_add(&x->res->report, "3-1", "sampling_frequency_available",
@@ -622,10 +631,9 @@ static int timestamp_clock(struct ftest_ctx *x)
 	size_t i;
 	int ret;
 
-	ret = iio_read_attr_at(d->dfd, "current_timestamp_clock", val,
-			       sizeof(val));
-	if (ret < 0)
-		return ftest_io_failed(x, "3-1", "current_timestamp_clock", ret);
+	ret = read_setup_attr(x, "current_timestamp_clock", val, sizeof(val));
+	if (ret)
+		return ret;
 	for (i = 0; i < sizeof(ts_clocks) / sizeof(ts_clocks[0]); i++)
 		if (!strcmp(val, ts_clocks[i].name)) {
 			d->ts_clock = ts_clocks[i].id;

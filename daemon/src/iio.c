@@ -55,21 +55,16 @@ int iio_read_attr(const char *dir, const char *name, char *buf, size_t size)
 
 int iio_read_attr_at(int dfd, const char *name, char *buf, size_t size)
 {
-	ssize_t n;
-	int fd;
+	struct iio_attr a;
+	int ret;
 
-	fd = openat(dfd, name, O_RDONLY | O_CLOEXEC);
-	if (fd < 0)
-		return -errno;
-	n = read(fd, buf, size - 1);
-	close(fd);
-	if (n < 0)
-		return -errno;
-	while (n > 0 && buf[n - 1] == '\n')
-		n--;
-	buf[n] = '\0';
+	ret = iio_attr_open(&a, dfd, name, false);
+	if (ret)
+		return ret;
+	ret = iio_attr_read(&a, buf, size);
+	iio_attr_close(&a);
 
-	return (int)n;
+	return ret;
 }
 
 int iio_read_debugfs(const char *dir, const char *name, char *buf,

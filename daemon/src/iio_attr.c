@@ -19,7 +19,8 @@ int iio_attr_open(struct iio_attr *a, int dfd, const char *name,
 	if (fd < 0)
 		return -errno;
 	a->fd = fd;
-	a->plain = fstatfs(fd, &fs) || fs.f_type != SYSFS_MAGIC;
+	/* only a write needs to know */
+	a->plain = writable && (fstatfs(fd, &fs) || fs.f_type != SYSFS_MAGIC);
 
 	return 0;
 }
@@ -35,8 +36,13 @@ int iio_attr_read(const struct iio_attr *a, char *buf, size_t size)
 {
 	ssize_t n;
 
-	/* sysfs makes the value anew for a read from offset 0 */
+	/*
+	 * sysfs makes the value anew for a read from offset 0; a file that
+	 * cannot seek (a FIFO standing in for one) is read as it comes
+	 */
 	n = pread(a->fd, buf, size - 1, 0);
+	if (n < 0 && errno == ESPIPE)
+		n = read(a->fd, buf, size - 1);
 	if (n < 0)
 		return -errno;
 	while (n > 0 && buf[n - 1] == '\n')
@@ -53,6 +59,8 @@ int iio_attr_write(const struct iio_attr *a, const char *value)
 
 	/* sysfs hands a write to the attribute whole, at any offset */
 	n = pwrite(a->fd, value, len, 0);
+	if (n < 0 && errno == ESPIPE)
+		n = write(a->fd, value, len);
 	if (n < 0)
 		return -errno;
 	if ((size_t)n != len)
