@@ -53,6 +53,7 @@
 #include <fcntl.h>
 #include <dirent.h>
 #include <poll.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -148,6 +149,7 @@ struct saved_attr {
  * @n_saved:	how many
  * @calibbias:	in_accel_{x,y,z}_calibbias, open (their @saved entries')
  * @enable:	buffer/enable, open once the first level run starts
+ * @scan_ready:	the scan is set up (beside step 2) for the first level run
  * @capture_fd:	the character device while the test's capture runs, else -1
  * @ts_clock:	the clock of the samples' timestamps (current_timestamp_clock)
  * @period_ns:	the sample period at the test's rate
@@ -168,6 +170,7 @@ struct iio_test_dev {
 	unsigned int n_saved;
 	struct iio_attr calibbias[AS9888_AXES];
 	struct iio_attr enable;
+	bool scan_ready;
 	int capture_fd;
 	clockid_t ts_clock;
 	int64_t period_ns;
@@ -498,17 +501,140 @@ static void judge_selftest(struct ftest_ctx *x, bool pass)
 		judge_selftest_readings(x, adj, pass);
 }
 
+/* @entry ("in_accel_x_en") is the enable file of one of scan_channel[] */
+static bool is_test_channel(const char *entry)
+{
+	unsigned int i;
+	size_t len;
+
+	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
+		len = strlen(scan_channel[i]);
+		if (!strncmp(entry, scan_channel[i], len) &&
+		    !strcmp(entry + len, "_en"))
+			return true;
+	}
+
+	return false;
+}
+
+/*
+ * Only scan_channel[] enabled; their places in a sample. Touches no chip
+ * and no report: also run beside step 2 (scan_prep_run()). 0, or -errno
+ * with what failed in *@what
+ */
+static int scan_setup(struct iio_test_dev *d, const char **what)
+{
+	char name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
+	unsigned int i;
+	struct dirent *de;
+	DIR *dir;
+	int ret = 0;
+
+	*what = "scan elements";
+	ret = openat(d->dfd, d->scan_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	dir = ret < 0 ? NULL : fdopendir(ret);
+	if (!dir)
+		return -errno;
+	ret = 0;
+	while (!ret && (de = readdir(dir))) {
+		size_t len = strlen(de->d_name);
+
+		if (len < 4 || strcmp(de->d_name + len - 3, "_en"))
+			continue;
+		snprintf(name, sizeof(name), "%s/%s", d->scan_dir, de->d_name);
+		ret = change_attr(d, name, is_test_channel(de->d_name) ? "1" : "0");
+	}
+	closedir(dir);
+	if (ret)
+		return ret;
+
+	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
+		struct iio_scan_channel *l = &d->layout[i];
+
+		*what = scan_channel[i];
+		snprintf(name, sizeof(name), "%s/%s_index", d->scan_dir,
+			 scan_channel[i]);
+		if (iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
+			return -EIO;
+		if (sscanf(val, "%u", &l->index) != 1)
+			return -EINVAL;
+		snprintf(name, sizeof(name), "%s/%s_type", d->scan_dir,
+			 scan_channel[i]);
+		if (iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
+			return -EIO;
+		ret = iio_scan_parse_type(val, l);
+		if (ret)
+			return ret;
+	}
+
+	*what = "scan element indices";
+	ret = iio_scan_layout(d->layout, IIO_SCAN_CHANNELS);
+	if (ret < 0)
+		return ret;
+	d->sample_bytes = (unsigned int)ret;
+
+	return 0;
+}
+
+/*
+ * The scan set-up for a level run: done already beside step 2's self-test
+ * (once), or now
+ */
+static int setup_scan(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	const char *what;
+	int ret;
+
+	if (d->scan_ready) {
+		d->scan_ready = false;
+		return 0;
+	}
+	ret = scan_setup(d, &what);
+
+	return ret ? ftest_io_failed(x, "3-1", what, ret) : 0;
+}
+
+/*
+ * Step 3's scan set-up beside step 2's self-test, which holds the chip for
+ * tens of milliseconds in the driver: the scan elements are the IIO
+ * core's, under its own lock, and the chip is not touched. A failure is
+ * not reported here: step 3 then sets the scan up again and says why
+ */
+struct scan_prep {
+	struct iio_test_dev *d;
+	const char *what;
+	int ret;
+};
+
+static void *scan_prep_run(void *arg)
+{
+	struct scan_prep *p = arg;
+
+	p->ret = scan_setup(p->d, &p->what);
+
+	return NULL;
+}
+
 static int iio_step2(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
 	enum iio_selftest_verdict verdict = IIO_SELFTEST_NONE;
+	struct scan_prep prep = { .d = d };
 	char val[IIO_ATTR_MAX];
+	pthread_t prep_thread;
+	bool prepping;
 	int ret;
 
 	ftest_skip(x, "2-4.int2", "INT2 pin check (D11)", "the driver does not use INT2");
 	if (find_magn(x))
 		return 0;
+	prepping = !pthread_create(&prep_thread, NULL, scan_prep_run, &prep);
 	ret = iio_write_attr(d->magn, "selftest", "1");
+	if (prepping) {
+		pthread_join(prep_thread, NULL);
+		d->scan_ready = !prep.ret;
+	}
 	if (!ftest_judge(x, "2-4.drdy", "measurement completes", !ret,
 			 "the driver's selftest runs both measurements",
 			 "%s/selftest: %s", d->magn, ret ? strerror(-ret) : "done"))
@@ -522,64 +648,6 @@ static int iio_step2(struct ftest_ctx *x)
 			 "\"%s\"", val))
 		return 0;
 	judge_selftest(x, verdict == IIO_SELFTEST_PASS);
-
-	return 0;
-}
-
-/* Only scan_channel[] enabled; their places in a sample */
-static int setup_scan(struct ftest_ctx *x)
-{
-	struct iio_test_dev *d = x->dev;
-	char name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
-	unsigned int i;
-	struct dirent *de;
-	DIR *dir;
-	int ret = 0;
-
-	ret = openat(d->dfd, d->scan_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-	dir = ret < 0 ? NULL : fdopendir(ret);
-	if (!dir) {
-		ret = -errno;
-		return ftest_io_failed(x, "3-1", "scan elements", ret);
-	}
-	ret = 0;
-	while (!ret && (de = readdir(dir))) {
-		size_t len = strlen(de->d_name);
-
-		if (len < 4 || strcmp(de->d_name + len - 3, "_en"))
-			continue;
-		snprintf(name, sizeof(name), "%s/%s", d->scan_dir, de->d_name);
-		ret = change_attr(d, name, "0");
-	}
-	closedir(dir);
-	if (ret)
-		return ftest_io_failed(x, "3-1", "scan elements", ret);
-
-	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
-		struct iio_scan_channel *l = &d->layout[i];
-
-		snprintf(name, sizeof(name), "%s/%s_en", d->scan_dir, scan_channel[i]);
-		ret = change_attr(d, name, "1");
-		snprintf(name, sizeof(name), "%s/%s_index", d->scan_dir,
-			 scan_channel[i]);
-		if (!ret && iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
-			ret = -EIO;
-		if (!ret && sscanf(val, "%u", &l->index) != 1)
-			ret = -EINVAL;
-		snprintf(name, sizeof(name), "%s/%s_type", d->scan_dir,
-			 scan_channel[i]);
-		if (!ret && iio_read_attr_at(d->dfd, name, val, sizeof(val)) <= 0)
-			ret = -EIO;
-		if (!ret)
-			ret = iio_scan_parse_type(val, l);
-		if (ret)
-			return ftest_io_failed(x, "3-1", scan_channel[i], ret);
-	}
-
-	ret = iio_scan_layout(d->layout, IIO_SCAN_CHANNELS);
-	if (ret < 0)
-		return ftest_io_failed(x, "3-1", "scan element indices", ret);
-	d->sample_bytes = (unsigned int)ret;
 
 	return 0;
 }
