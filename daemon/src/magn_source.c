@@ -225,6 +225,11 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 	long v;
 	int axis, ret;
 
+	/*
+	 * Each read is a measurement of its own: the field's three axes are
+	 * read one after the other, the closest in time they can be, then
+	 * the accelerometer's
+	 */
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		/* raw = (count + calibbias) * calibscale: the count back */
 		double d = s->driver.calibscale_micro[axis] / MICRO;
@@ -235,6 +240,8 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 			return ret;
 		r->field_ut[axis] = (v / d - s->driver.calibbias[axis]) *
 				    s->scale_ut[axis];
+	}
+	for (axis = 0; axis < AS9888_AXES; axis++) {
 		ret = read_raw(s->accel_dir, accel_raw[axis], 8 * ACCEL_RAW_MAX,
 			       &v, err, errlen);
 		if (ret)
