@@ -14,9 +14,9 @@
 /**
  * struct iio_attr - an attribute file, open
  * @fd:		its descriptor, -1 when closed
- * @plain:	a plain file, not sysfs (the tests' fake tree): a write
- *		truncates it to the value written, as sysfs replaces the
- *		value whole
+ * @plain:	a plain file, not sysfs (below $AS9888_SYSFS: the tests'
+ *		tree): a write truncates it to the value written, as sysfs
+ *		replaces the value whole
  */
 struct iio_attr {
 	int fd;
