@@ -48,7 +48,8 @@ int iio_attr_read(const struct iio_attr *a, char *buf, size_t size)
 		n = read(a->fd, buf, size - 1);
 	if (n < 0)
 		return -errno;
-	while (n > 0 && buf[n - 1] == '\n')
+	/* some of the IIO core's end in a NUL too (current_timestamp_clock) */
+	while (n > 0 && (buf[n - 1] == '\n' || buf[n - 1] == '\0'))
 		n--;
 	buf[n] = '\0';
 

@@ -102,7 +102,8 @@ static int setup(void **state)
 	}
 	put_initial(f);
 	fake_put(f->dev, "sampling_frequency_available", "1 2 5 10 20 25 50 100 125\n");
-	fake_put(f->dev, "current_timestamp_clock", "realtime\n");
+	/* as the IIO core prints it: with the NUL of its string */
+	fake_put_bytes(f->dev, "current_timestamp_clock", "realtime\n", 10);
 
 	return 0;
 }
@@ -545,7 +546,8 @@ static void unknown_timestamp_clock_stops(void **state)
 	put_initial(f);
 	fake_put(f->dev, "current_timestamp_clock", "sundial\n");
 	run(f, &res);
-	fake_put(f->dev, "current_timestamp_clock", "realtime\n");
+	/* as the IIO core prints it: with the NUL of its string */
+	fake_put_bytes(f->dev, "current_timestamp_clock", "realtime\n", 10);
 	j = report_first_failure(&res.report);
 	assert_non_null(j);
 	assert_string_equal(j->step, "3-1");
