@@ -33,18 +33,21 @@ sock=$work/sock
 "$calibd" factory-test --sim-clock virtual --record "$rec" >/dev/null ||
 	{ echo "Bail out! no factory record"; exit 1; }
 
-# start_daemon LOG [OPTIONS]: $pid, once its socket answers
+# start_daemon LOG [OPTIONS]: $pid, once its socket answers. A busy
+# machine only makes it slower: the wait ends when the daemon exits, or
+# after 120 s without an answer (a stall)
 start_daemon() {
-	local log=$1
+	local log=$1 t0
 	shift
 	"$calibd" daemon --sim-clock virtual --record "$rec" --socket "$sock" "$@" 2>"$log" &
 	pid=$!
 	pids+=("$pid")
-	for _ in $(seq 200); do
+	t0=$(date +%s)
+	while kill -0 "$pid" 2>/dev/null && [ $(($(date +%s) - t0)) -lt 120 ]; do
 		timeout 10 "$calibd" request status --socket "$sock" >/dev/null 2>&1 && return 0
 		sleep 0.05
 	done
-	echo "Bail out! the daemon did not come up"
+	echo "Bail out! the daemon did not come up ($(kill -0 "$pid" 2>/dev/null && echo "no answer in 120 s" || echo exited): $(head -c 300 "$log"))"
 	exit 1
 }
 alive() { kill -0 "$pid" 2>/dev/null; }
