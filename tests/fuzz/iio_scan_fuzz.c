@@ -40,7 +40,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		memset(&c[n], 0, sizeof(c[n]));
 		if (iio_scan_parse_type(type, &c[n]))
 			continue;
-		if (!c[n].bytes || c[n].bytes > 4 || c[n].realbits > 8 * c[n].bytes)
+		if (!c[n].bytes || c[n].bytes > 8 || c[n].realbits > 8 * c[n].bytes)
 			abort();
 		c[n++].index = index;
 	}
@@ -53,9 +53,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		if (raw)
 			memcpy(sample, raw, strnlen(raw, (size_t)bytes));
 		for (i = 0; i < n; i++) {
-			if (c[i].offset + c[i].bytes > (unsigned int)bytes)
+			if (c[i].offset + c[i].bytes > (unsigned int)bytes ||
+			    (unsigned int)bytes % c[i].bytes)
 				abort();
-			iio_scan_value(&c[i], sample);
+			iio_scan_value64(&c[i], sample);
+			if (c[i].bytes <= 4)
+				iio_scan_value(&c[i], sample);
 		}
 	}
 	free(text);
