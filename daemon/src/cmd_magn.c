@@ -145,7 +145,7 @@ int cmd_magn_calibrate(const struct cli_opts *o)
 	printf("Stored in %s; the previous record is kept as %s%s (as9888-calibd rollback)\n",
 	       o->record_path, o->record_path, SESSION_PREVIOUS_SUFFIX);
 	/* through the driver: in effect now, as restore puts it at boot */
-	if (driver && iio_apply_record(accel, &rec))
+	if (driver && iio_apply_magn_checked(accel, &rec, o->record_path))
 		return EXIT_FAILURE;
 	if (driver)
 		printf("Applied to the driver (in_magn_*_calibbias, in_magn_*_calibscale)\n");

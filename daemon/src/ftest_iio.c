@@ -809,9 +809,10 @@ static int read_samples(struct ftest_ctx *x, uint32_t n, int64_t after,
 			int16_t out[AS9888_AXES];
 			int axis;
 
-			deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
+			/* only a sample kept shows the capture going on */
 			if (iio_scan_value64(&d->layout[IIO_SCAN_TIMESTAMP], p) <= after)
 				continue;
+			deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
 			for (axis = 0; axis < AS9888_AXES; axis++)
 				out[axis] = (int16_t)iio_scan_value(&d->layout[axis], p);
 			cs.tmps = (uint8_t)iio_scan_value(&d->layout[IIO_SCAN_TEMP], p);

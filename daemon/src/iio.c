@@ -259,6 +259,21 @@ int iio_apply_checked(const char *dir, const struct calib_record *rec,
 	return ret ? ret : iio_apply_record(dir, rec);
 }
 
+int iio_apply_magn_checked(const char *accel_dir,
+			   const struct calib_record *rec, const char *what)
+{
+	int ret;
+
+	if (rec->simulated) {
+		fprintf(stderr, "as9888-calibd: %s was written on the simulator (source = simulator): its magnetometer calibration is not applied to %s\n",
+			what, accel_dir);
+		return -EPERM;
+	}
+	ret = check_chip(accel_dir, rec, what);
+
+	return ret ? ret : magn_iio_apply(accel_dir, rec);
+}
+
 int iio_apply_device(const char *dir, const struct calib_record *rec,
 		     const char *what)
 {

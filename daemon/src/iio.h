@@ -159,6 +159,16 @@ int iio_apply_checked(const char *dir, const struct calib_record *rec,
 		      const char *what);
 
 /*
+ * The magnetometer's part of @rec alone (magn_iio_apply()), on the chip
+ * of the accelerometer device at @accel_dir: refused when the record was
+ * made on the simulator or on another chip (its EEPROM). For commands
+ * that changed only that part (magn-calibrate, the field mode). 0 or
+ * -errno, said on stderr.
+ */
+int iio_apply_magn_checked(const char *accel_dir,
+			   const struct calib_record *rec, const char *what);
+
+/*
  * The same for one device only, either of the chip's two: @dir is the
  * accelerometer's (its part of @rec, the magnetometer left alone) or the
  * magnetometer's (its part, magn_iio_apply_dev()); any other device is

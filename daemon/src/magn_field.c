@@ -14,6 +14,7 @@
 
 #include "commands.h"
 #include "iio.h"
+#include "lock_file.h"
 #include "magcal.h"
 #include "magn_cal.h"
 #include "magn_field.h"
@@ -111,12 +112,18 @@ static void samples_path(const struct cli_opts *o, char *path, size_t size)
 			 MAGN_FIELD_SAMPLES_NAME);
 }
 
-/* A regular file owned by us that no other user can write */
+/*
+ * The longest wait for the samples file's lock, held by the feed of
+ * another client: a holder that never lets go costs this sample only
+ */
+#define MAGN_FIELD_LOCK_MS	5000
+
+/* A regular file owned by us, with one name, that no other user can write */
 static bool samples_file_trusted(int fd)
 {
 	struct stat st;
 
-	return !fstat(fd, &st) && S_ISREG(st.st_mode) &&
+	return !fstat(fd, &st) && S_ISREG(st.st_mode) && st.st_nlink == 1 &&
 	       st.st_uid == geteuid() && !(st.st_mode & (S_IWGRP | S_IWOTH));
 }
 
@@ -139,14 +146,11 @@ static int store_sample(const char *path, const double m[3], const double a[3],
 		snprintf(err, errlen, "out of memory");
 		return -ENOMEM;
 	}
-	fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
-	if (fd < 0 || flock(fd, LOCK_EX)) {
-		ret = -errno;
-		snprintf(err, errlen, "%.300s: %s", path, strerror(-ret));
-		if (fd >= 0)
-			close(fd);
+	/* never through a link, never blocking on a FIFO put there */
+	fd = lock_file_open(path, 0600, err, errlen);
+	if (fd < 0) {
 		free(text);
-		return ret;
+		return fd;
 	}
 	/*
 	 * Only a file of our own that nobody else may write: next to a
@@ -159,6 +163,14 @@ static int store_sample(const char *path, const double m[3], const double a[3],
 		close(fd);
 		free(text);
 		return -EPERM;
+	}
+	ret = lock_file_wait(fd, MAGN_FIELD_LOCK_MS);
+	if (ret) {
+		snprintf(err, errlen, "%.300s: not locked within %u ms: %s; this sample is not stored",
+			 path, MAGN_FIELD_LOCK_MS, strerror(-ret));
+		close(fd);
+		free(text);
+		return ret;
 	}
 	len = read(fd, text, FILE_MAX);
 	if (len < 0)
@@ -250,7 +262,8 @@ static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
 		o->record_path);
 	printf("stored in %s\n", o->record_path);
 
-	return *accel ? iio_apply_record(accel, rec) : 0;
+	/* the magnetometer's part, on this chip: the accelerometer's is as it was */
+	return *accel ? iio_apply_magn_checked(accel, rec, o->record_path) : 0;
 }
 
 int cmd_magn_feed(const struct cli_opts *o)

@@ -103,8 +103,11 @@ int magn_iio_read(const char *magn_dir, struct magn_driver_cal *d,
 				 magn_calibscale_attr[axis], strerror(-ret));
 			return ret;
 		}
-		if (parse_micro(val, &d->calibscale_micro[axis])) {
-			snprintf(err, errlen, "%s/%s reads \"%s\", not a scale like 1.000000",
+		/* the driver's range: a scale outside it (0) is no reading */
+		if (parse_micro(val, &d->calibscale_micro[axis]) ||
+		    d->calibscale_micro[axis] < AS9888_MAGN_CALIBSCALE_MIN ||
+		    d->calibscale_micro[axis] > AS9888_MAGN_CALIBSCALE_MAX) {
+			snprintf(err, errlen, "%s/%s reads \"%s\", not a scale like 1.000000 (0.500000..2.000000)",
 				 magn_dir, magn_calibscale_attr[axis], val);
 			return -EINVAL;
 		}

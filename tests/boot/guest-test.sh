@@ -120,10 +120,12 @@ factory)
 		      grep -qx "format = as9888-calibration 2" "$rec"'
 	tail -4 /tmp/mc.log | sed 's/^/BOOTTEST # /'
 	echo 0 >$sim/tumble
-	magn_cal >/root/magn-cal
-	echo "BOOTTEST # the driver's magnetometer calibration: $(cat /root/magn-cal)"
+	# saved only from a session that stored a format 2 record: the next
+	# boots' checks compare with it
+	grep -qx "format = as9888-calibration 2" "$rec" && magn_cal >/root/magn-cal
+	echo "BOOTTEST # the driver's magnetometer calibration: $(cat /root/magn-cal 2>/dev/null)"
 	check "and applied to the driver (calibbias not the defaults)" \
-		eval '! grep -q "^0 0 0 " /root/magn-cal'
+		eval '[ -s /root/magn-cal ] && ! grep -q "^0 0 0 " /root/magn-cal'
 	;;
 boot)
 	u=$(restore_unit)

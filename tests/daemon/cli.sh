@@ -182,11 +182,15 @@ run show --record "$rec" --samples 10
 check "an option a command does not take is named, not its value" \
 	eval '[ $rc -eq 2 ] && says "show does not take --samples" err'
 
-for bad in "--device relative/iio:device0" "--backend sim --device /sys/x" "--device"; do
-	# shellcheck disable=SC2086
-	run restore --record "$rec" $bad
-	check "restore $bad: exit 2 with a message" eval '[ $rc -eq 2 ] && [ -s "$work/err" ]'
-done
+run restore --record "$rec" --device relative/iio:device0
+check "restore --device relative/...: exit 2, an absolute sysfs path asked for" \
+	eval '[ $rc -eq 2 ] && says "takes the absolute sysfs path" err'
+run restore --record "$rec" --backend sim --device /sys/x
+check "restore --backend sim --device: exit 2, --device is for the driver" \
+	eval '[ $rc -eq 2 ] && says "is for --backend iio" err'
+run restore --record "$rec" --device
+check "restore --device without a value: exit 2" \
+	eval '[ $rc -eq 2 ] && says "needs a value" err'
 run factory-test $vt --record "$rec" --device /sys/x
 check "--device is restore's: factory-test does not take it" \
 	eval '[ $rc -eq 2 ] && says "factory-test does not take --device" err'

@@ -120,8 +120,9 @@ check "the rewrite is logged once, the samples not at all" eval '
 # the board's hard iron moves by 5 uT: within 6 hours nothing is rewritten
 cp "$rec" "$work/first"
 "$here/magn_feed.py" "$sock" 150 3 125 -80 45 >"$work/feed" 2>&1
+frc=$?
 check "a new estimate within 6 hours of the last: the record is not rewritten" \
-	cmp -s "$rec" "$work/first"
+	eval '[ $frc -eq 0 ] && cmp -s "$rec" "$work/first"'
 
 # make the calibration 7 hours old (re-sealed)
 age() {
@@ -141,10 +142,12 @@ age 7
 rm -f "$work/run/magn-samples"
 cp "$rec" "$work/aged"
 "$here/magn_feed.py" "$sock" 100 4 120 -80 45 >"$work/feed" 2>&1
+frc=$?
 check "7 hours old, the same board again (a change below 1 uT): not rewritten" \
-	cmp -s "$rec" "$work/aged"
+	eval '[ $frc -eq 0 ] && cmp -s "$rec" "$work/aged"'
 rm -f "$work/run/magn-samples"
-"$here/magn_feed.py" "$sock" 300 5 125 -80 45 >"$work/feed" 2>&1
+# 310 samples: the runtime directory keeps the last 300
+"$here/magn_feed.py" "$sock" 310 5 125 -80 45 >"$work/feed" 2>&1
 check "7 hours old, the hard iron 5 uT off: rewritten with the new estimate" eval '
 	! cmp -s "$rec" "$work/aged" && hard_iron_near 1.5 125 -80 45'
 check "the calibration it replaced is kept as the previous record" \

@@ -294,6 +294,34 @@ static void device_magn_other_chip(void **state)
 	expect(f->magn, "in_magn_x_calibbias", "0\n");
 }
 
+/*
+ * magn-calibrate and the field mode change only the magnetometer's part:
+ * that part alone is applied, on the record's chip, never from a record
+ * made on the simulator
+ */
+static void magn_checked_alone(void **state)
+{
+	struct fake_sysfs *f = *state;
+	struct calib_record rec = test_record;
+
+	reset(f, true);
+	memcpy(rec.eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
+	rec.magn = magn_example;
+	assert_int_equal(iio_apply_magn_checked(f->dev, &rec, "rec"), 0);
+	expect(f->dev, "in_accel_x_calibbias", "0\n");
+	expect(f->magn, "in_magn_x_calibbias", "-100");
+	expect(f->magn, "in_magn_y_calibscale", "0.985000");
+
+	reset(f, true);
+	rec.simulated = true;
+	assert_int_equal(iio_apply_magn_checked(f->dev, &rec, "rec"), -EPERM);
+	expect(f->magn, "in_magn_x_calibbias", "0\n");
+	rec.simulated = false;
+	rec.eeprom[AS9888_EE_EHC(2)] ^= 1;
+	assert_int_equal(iio_apply_magn_checked(f->dev, &rec, "rec"), -ENODEV);
+	expect(f->magn, "in_magn_x_calibbias", "0\n");
+}
+
 /* A hard iron the driver's +-4096 LSB cannot cancel is refused, not clipped */
 static void split_refuses_out_of_range(void **state)
 {
@@ -376,6 +404,7 @@ int main(void)
 		cmocka_unit_test(device_magn_alone),
 		cmocka_unit_test(device_other_refused),
 		cmocka_unit_test(device_magn_other_chip),
+		cmocka_unit_test(magn_checked_alone),
 		cmocka_unit_test(split_refuses_out_of_range),
 		cmocka_unit_test(split_recombines),
 	};
