@@ -85,13 +85,17 @@ static bool find_device(const char *sysfs, const char *name, char *dir,
 }
 
 /*
- * <type>_<axis>_raw times the scale (per axis, or shared by the type),
- * turned into the device frame by <type>_mount_matrix when there is one.
+ * <type>_<axis>_raw times the scale (per axis, or shared by the type), in
+ * the sensor's frame corrected by @resid when given (the magnetometer's
+ * residual soft iron, a sensor-frame matrix), then turned into the device
+ * frame by <type>_mount_matrix when there is one.
  */
-static bool read_vector(const char *dir, const char *type, double v[3])
+static bool read_vector(const char *dir, const char *type,
+			const double (*resid)[3], double v[3])
 {
 	static const char axes[3] = { 'x', 'y', 'z' };
-	double raw[3], scale, m[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+	double raw[3], s[3], scale;
+	double m[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
 	char attr[64], path[PATH_MAX];
 	FILE *f;
 	int i;
@@ -122,7 +126,10 @@ static bool read_vector(const char *dir, const char *type, double v[3])
 		fclose(f);
 	}
 	for (i = 0; i < 3; i++)
-		v[i] = m[i][0] * raw[0] + m[i][1] * raw[1] + m[i][2] * raw[2];
+		s[i] = resid ? resid[i][0] * raw[0] + resid[i][1] * raw[1] +
+			       resid[i][2] * raw[2] : raw[i];
+	for (i = 0; i < 3; i++)
+		v[i] = m[i][0] * s[0] + m[i][1] * s[1] + m[i][2] * s[2];
 	return true;
 }
 
@@ -158,8 +165,7 @@ int main(int argc, char **argv)
 {
 	struct options o = { "/sys", 0, { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } } };
 	char accel[PATH_MAX], magn[PATH_MAX];
-	double up[3], m[3], field[3], heading;
-	int i;
+	double up[3], field[3], heading;
 
 	if (!parse_args(argc, argv, &o))
 		return usage();
@@ -169,15 +175,13 @@ int main(int argc, char **argv)
 			"IIO devices under %s\n", o.sysfs);
 		return 1;
 	}
-	if (!read_vector(accel, "accel", up) || !read_vector(magn, "magn", m)) {
+	/* the userspace part of the soft-iron correction, before the mount */
+	if (!read_vector(accel, "accel", NULL, up) ||
+	    !read_vector(magn, "magn", (const double (*)[3])o.resid, field)) {
 		fprintf(stderr, "as9888-compass: cannot read the raw values "
 			"(%s)\n", strerror(errno));
 		return 1;
 	}
-	/* the userspace part of the soft-iron correction */
-	for (i = 0; i < 3; i++)
-		field[i] = o.resid[i][0] * m[0] + o.resid[i][1] * m[1] +
-			   o.resid[i][2] * m[2];
 	if (magcal_heading_deg(field, up, o.declination, &heading)) {
 		fprintf(stderr, "as9888-compass: no heading (the field is "
 			"vertical, or +Y points up or down)\n");

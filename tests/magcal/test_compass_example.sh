@@ -38,7 +38,7 @@ check() {	# check WANT DESCRIPTION ARGS...
 	fi
 }
 
-echo "1..7"
+echo "1..8"
 check "as9888-compass: no as9888-accel and as9888-magn IIO devices under $t" \
 	"no devices: says so"
 dev iio:device0 as9888-accel
@@ -60,6 +60,10 @@ vec iio:device1 magn -80 0 -140
 put iio:device0 in_accel_mount_matrix "0, -1, 0; 1, 0, 0; 0, 0, 1"
 put iio:device1 in_magn_mount_matrix "0, -1, 0; 1, 0, 0; 0, 0, 1"
 check "heading 180.0" "mount matrix"
+# R is the sensor's: applied before the mount matrix, not after it
+vec iio:device1 magn -80 10 -140
+check "heading 180.0" "mount matrix and a cross term: R in the sensor frame" \
+	--residual "1 0 0 0.125 1 0 0 0 1"
 check "usage: as9888-compass [--sysfs DIR] [--declination DEG] [--residual \"r11 r12 r13 r21 r22 r23 r31 r32 r33\"]" \
 	"a bad argument: usage" --residual "1 2 3"
 [ $fails -eq 0 ]
