@@ -571,6 +571,8 @@ static int scan_setup(struct iio_test_dev *d, const char **what)
 	ret = iio_scan_layout(d->layout, IIO_SCAN_CHANNELS);
 	if (ret < 0)
 		return ret;
+	if (ret > IIO_SAMPLE_MAX)
+		return -E2BIG;
 	d->sample_bytes = (unsigned int)ret;
 
 	return 0;
@@ -902,8 +904,6 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 
 	/* the calibbias in effect: read back with the last DAC written */
 	memcpy(d->comp.da, x->dac, AS9888_AXES);
-	if (d->sample_bytes > IIO_SAMPLE_MAX)
-		return ftest_io_failed(x, step, "buffer layout", -EINVAL);
 	for (;;) {
 		ret = collect_once(x, n, step, r, why, sizeof(why), &taken);
 		if (ret != -ETIMEDOUT || !taken || retakes == IIO_RETAKE_MAX)
