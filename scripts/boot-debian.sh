@@ -29,7 +29,8 @@
 # (git archive HEAD), not from files being edited.
 #
 # The root file system (debootstrap + Debian's kernel, and a copy with what
-# the packages need: dkms, the kernel's headers, libgpiod2, busybox-static)
+# the packages need: dkms, the kernel's headers, libgpiod2, busybox-static;
+# gpiod for the factory-speed rounds' gpioinfo)
 # is cached in $AS9888_CACHE/boot (~/.cache/as9888/boot, under cache_lock "boot"), so
 # any checkout on this machine reuses it; this checkout's builds, disk image
 # and logs are in $AS9888_BUILD/boot (default build/boot). A second run
@@ -90,7 +91,7 @@ log "root file system ready ($(du -sh "$rootfs" | cut -f1), $(( $(date +%s) - t0
 
 # 1b. a copy with what `apt install ./as9888-*.deb` pulls in (installed
 # from the network once, so each run installs the packages offline)
-deps="dkms linux-headers-$KVER libgpiod2 busybox-static"
+deps="dkms linux-headers-$KVER libgpiod2 busybox-static gpiod"
 droot=$cache/rootfs-$KVER-debs
 if [ "$(cat "$droot/.as9888-complete" 2>/dev/null)" != "$deps" ]; then
 	log "the packages' dependencies into a copy of the root file system: $deps"

@@ -26,11 +26,11 @@
  *           delivers none that fails, and the DAC goes through calibbias.
  *           The filter is in_accel_oversampling_ratio: 1 off, 4 on (ALPF).
  *           The capture runs from the first level run to the end of the
- *           test (the driver takes a calibbias write while it runs, between
- *           two samples); each run keeps only samples measured after it
- *           began (timestamp more than one sample period after its start,
- *           the period holding a measurement), so none was measured with
- *           the DAC before a write
+ *           test. The driver takes a calibbias write while it runs, in the
+ *           gap between two samples, after the sample before it went into
+ *           the buffer (Documentation/iio/as9888.rst): the samples the
+ *           buffer holds when the write returns were measured with the old
+ *           DAC and are dropped, every later one with the new
  *
  * The driver delivers compensated accelerometer samples (1024 per g); the
  * application note judges and averages the chip's own output. The test
@@ -53,7 +53,6 @@
 #include <fcntl.h>
 #include <dirent.h>
 #include <poll.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -94,9 +93,8 @@
 #define IIO_RETAKE_MAX		2
 #define IIO_SAVED_MAX		32
 #define IIO_NAME_MAX		64
-#define IIO_SCAN_CHANNELS	5
+#define IIO_SCAN_CHANNELS	4
 #define IIO_SCAN_TEMP		3
-#define IIO_SCAN_TIMESTAMP	4
 #define IIO_OVERSAMPLING_ATTR	"in_accel_oversampling_ratio"
 #define IIO_OVERSAMPLING_OFF	"1"
 #define IIO_OVERSAMPLING_ALPF	"4"
@@ -105,21 +103,7 @@
 /* The buffer's channels the test uses, in the order of this table */
 static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
 	[0] = "in_accel_x", [1] = "in_accel_y", [2] = "in_accel_z",
-	[IIO_SCAN_TEMP] = "in_temp", [IIO_SCAN_TIMESTAMP] = "in_timestamp",
-};
-
-/* current_timestamp_clock's names (the IIO core's) */
-static const struct {
-	const char *name;
-	clockid_t id;
-} ts_clocks[] = {
-	{ "realtime", CLOCK_REALTIME },
-	{ "monotonic", CLOCK_MONOTONIC },
-	{ "monotonic_raw", CLOCK_MONOTONIC_RAW },
-	{ "realtime_coarse", CLOCK_REALTIME_COARSE },
-	{ "monotonic_coarse", CLOCK_MONOTONIC_COARSE },
-	{ "boottime", CLOCK_BOOTTIME },
-	{ "tai", CLOCK_TAI },
+	[IIO_SCAN_TEMP] = "in_temp",
 };
 
 /*
@@ -148,11 +132,11 @@ struct saved_attr {
  * @saved:	attributes to put back at the end, in this order
  * @n_saved:	how many
  * @calibbias:	in_accel_{x,y,z}_calibbias, open (their @saved entries')
- * @enable:	buffer/enable, open once the first level run starts
- * @scan_ready:	the scan is set up (beside step 2) for the first level run
+ * @enable:	buffer/enable, open from step 1-4 on
+ * @layout_known: @layout and @sample_bytes read (at the first buffer set-up)
  * @capture_fd:	the character device while the test's capture runs, else -1
- * @ts_clock:	the clock of the samples' timestamps (current_timestamp_clock)
- * @period_ns:	the sample period at the test's rate
+ * @dac_written: the DAC was written while the capture ran: the samples the
+ *		buffer holds were measured before
  * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
  * @comp:	what the driver compensates the samples with: the EEPROM
  *		and the calibration the last DAC write read back
@@ -170,10 +154,9 @@ struct iio_test_dev {
 	unsigned int n_saved;
 	struct iio_attr calibbias[AS9888_AXES];
 	struct iio_attr enable;
-	bool scan_ready;
+	bool layout_known;
 	int capture_fd;
-	clockid_t ts_clock;
-	int64_t period_ns;
+	bool dac_written;
 	bool int1_seen;
 	struct accel_comp comp;
 };
@@ -287,6 +270,8 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 		return iio_failed(x, step, "DAC through calibbias", err, ret);
 	memcpy(x->dac, got, AS9888_AXES);
 	*same = !memcmp(got, dac, AS9888_AXES);
+	if (d->capture_fd >= 0)
+		d->dac_written = true;
 
 	return 0;
 }
@@ -367,7 +352,10 @@ static int iio_step1(struct ftest_ctx *x)
 	 * The test takes the buffer, never from another program: a capture
 	 * that is under way gets its turn first, for a bounded time
 	 */
-	ret = iio_wait_buffer_free(d->dir, x->o->busy_timeout_ms, IIO_BUSY_POLL_MS);
+	ret = iio_attr_open(&d->enable, d->dfd, "buffer/enable", true);
+	if (!ret)
+		ret = iio_wait_enable_off(&d->enable, x->o->busy_timeout_ms,
+					  IIO_BUSY_POLL_MS);
 	if (ret == -EBUSY)
 		return device_taken(x, "1-4.free", "device free for the test",
 				    "buffer not enabled");
@@ -518,19 +506,16 @@ static bool is_test_channel(const char *entry)
 }
 
 /*
- * Only scan_channel[] enabled; their places in a sample. Touches no chip
- * and no report: also run beside step 2 (scan_prep_run()). 0, or -errno
- * with what failed in *@what
+ * Only scan_channel[] enabled, the other channels (the timestamp) off;
+ * every one saved first. 0, or -errno
  */
-static int scan_setup(struct iio_test_dev *d, const char **what)
+static int scan_enable(struct iio_test_dev *d)
 {
-	char name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
-	unsigned int i;
+	char name[IIO_PATH_MAX];
 	struct dirent *de;
 	DIR *dir;
-	int ret = 0;
+	int ret;
 
-	*what = "scan elements";
 	ret = openat(d->dfd, d->scan_dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
 	dir = ret < 0 ? NULL : fdopendir(ret);
 	if (!dir)
@@ -545,8 +530,20 @@ static int scan_setup(struct iio_test_dev *d, const char **what)
 		ret = change_attr(d, name, is_test_channel(de->d_name) ? "1" : "0");
 	}
 	closedir(dir);
-	if (ret)
-		return ret;
+
+	return ret;
+}
+
+/*
+ * The places of scan_channel[] in a sample, from their _index and _type
+ * (read once: they are fixed while the device exists). 0, or -errno with
+ * the channel it failed on in *@what
+ */
+static int scan_layout(struct iio_test_dev *d, const char **what)
+{
+	char name[IIO_PATH_MAX], val[IIO_ATTR_MAX];
+	unsigned int i;
+	int ret;
 
 	for (i = 0; i < IIO_SCAN_CHANNELS; i++) {
 		struct iio_scan_channel *l = &d->layout[i];
@@ -574,69 +571,22 @@ static int scan_setup(struct iio_test_dev *d, const char **what)
 	if (ret > IIO_SAMPLE_MAX)
 		return -E2BIG;
 	d->sample_bytes = (unsigned int)ret;
+	d->layout_known = true;
 
 	return 0;
-}
-
-/*
- * The scan set-up for a level run: done already beside step 2's self-test
- * (once), or now
- */
-static int setup_scan(struct ftest_ctx *x)
-{
-	struct iio_test_dev *d = x->dev;
-	const char *what;
-	int ret;
-
-	if (d->scan_ready) {
-		d->scan_ready = false;
-		return 0;
-	}
-	ret = scan_setup(d, &what);
-
-	return ret ? ftest_io_failed(x, "3-1", what, ret) : 0;
-}
-
-/*
- * Step 3's scan set-up beside step 2's self-test, which holds the chip for
- * tens of milliseconds in the driver: the scan elements are the IIO
- * core's, under its own lock, and the chip is not touched. A failure is
- * not reported here: step 3 then sets the scan up again and says why
- */
-struct scan_prep {
-	struct iio_test_dev *d;
-	const char *what;
-	int ret;
-};
-
-static void *scan_prep_run(void *arg)
-{
-	struct scan_prep *p = arg;
-
-	p->ret = scan_setup(p->d, &p->what);
-
-	return NULL;
 }
 
 static int iio_step2(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
 	enum iio_selftest_verdict verdict = IIO_SELFTEST_NONE;
-	struct scan_prep prep = { .d = d };
 	char val[IIO_ATTR_MAX];
-	pthread_t prep_thread;
-	bool prepping;
 	int ret;
 
 	ftest_skip(x, "2-4.int2", "INT2 pin check (D11)", "the driver does not use INT2");
 	if (find_magn(x))
 		return 0;
-	prepping = !pthread_create(&prep_thread, NULL, scan_prep_run, &prep);
 	ret = iio_write_attr(d->magn, "selftest", "1");
-	if (prepping) {
-		pthread_join(prep_thread, NULL);
-		d->scan_ready = !prep.ret;
-	}
 	if (!ftest_judge(x, "2-4.drdy", "measurement completes", !ret,
 			 "the driver's selftest runs both measurements",
 			 "%s/selftest: %s", d->magn, ret ? strerror(-ret) : "done"))
@@ -664,13 +614,9 @@ static int read_setup_attr(struct ftest_ctx *x, const char *name, char *val,
 	return ret < 0 ? ftest_io_failed(x, "3-1", name, ret) : 0;
 }
 
-/*
- * The fastest rate the driver offers now, as text into @rate; its period
- * into d->period_ns
- */
+/* The fastest rate the driver offers now, as text into @rate */
 static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 {
-	struct iio_test_dev *d = x->dev;
 	char val[IIO_ATTR_MAX];
 	long hz;
 	int ret;
@@ -688,32 +634,8 @@ static int fastest_rate(struct ftest_ctx *x, char *rate, size_t size)
 		return ret;
 	}
 	snprintf(rate, size, "%ld", hz);
-	d->period_ns = (int64_t)(NS_PER_MS * 1000 / (uint64_t)hz);
 
 	return 0;
-}
-
-/* current_timestamp_clock: the clock the samples' timestamps are on */
-static int timestamp_clock(struct ftest_ctx *x)
-{
-	struct iio_test_dev *d = x->dev;
-	char val[IIO_ATTR_MAX];
-	size_t i;
-	int ret;
-
-	ret = read_setup_attr(x, "current_timestamp_clock", val, sizeof(val));
-	if (ret)
-		return ret;
-	for (i = 0; i < sizeof(ts_clocks) / sizeof(ts_clocks[0]); i++)
-		if (!strcmp(val, ts_clocks[i].name)) {
-			d->ts_clock = ts_clocks[i].id;
-			return 0;
-		}
-	report_add(&x->res->report, "3-1", "current_timestamp_clock",
-		   JUDGMENT_FAIL, NULL, "\"%s\": not a clock of the IIO core", val);
-	x->stop = true;
-
-	return -EINVAL;
 }
 
 /* The buffer as the test uses it: its channels, trigger, length and rate */
@@ -721,11 +643,18 @@ static int buffer_setup(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
 	char rate[IIO_NAME_MAX];
+	const char *what;
 	int ret;
 
-	ret = setup_scan(x);
-	if (!ret)
-		ret = fastest_rate(x, rate, sizeof(rate));
+	ret = scan_enable(d);
+	if (ret)
+		return ftest_io_failed(x, "3-1", "scan elements", ret);
+	if (!d->layout_known) {
+		ret = scan_layout(d, &what);
+		if (ret)
+			return ftest_io_failed(x, "3-1", what, ret);
+	}
+	ret = fastest_rate(x, rate, sizeof(rate));
 	if (ret)
 		return ret;
 	ret = change_attr(d, "trigger/current_trigger", d->trigger);
@@ -756,29 +685,17 @@ static int iio_level_setup(struct ftest_ctx *x)
 			 "none: INT1 is not wired to the driver (%s); use --backend raw",
 			 *d->trigger ? d->trigger : d->dir))
 		return -ENODEV;
-	ret = timestamp_clock(x);
 
-	return ret ? ret : buffer_setup(x);
-}
-
-/* Now on the samples' clock, ns */
-static int64_t ts_now(const struct iio_test_dev *d)
-{
-	struct timespec ts;
-
-	clock_gettime(d->ts_clock, &ts);
-
-	return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
+	return buffer_setup(x);
 }
 
 /*
  * Read @n samples from the capture into @r, each taken back to the chip's
- * own output, skipping those timestamped at or before @after (ns on
- * d->ts_clock): -ERANGE with @why for a sample that cannot be taken back,
+ * own output: -ERANGE with @why for a sample that cannot be taken back,
  * -ETIMEDOUT when no sample comes for IIO_SAMPLE_STALL_MS
  */
-static int read_samples(struct ftest_ctx *x, uint32_t n, int64_t after,
-			struct level_run *r, char *why, size_t whylen)
+static int read_samples(struct ftest_ctx *x, uint32_t n, struct level_run *r,
+			char *why, size_t whylen)
 {
 	struct iio_test_dev *d = x->dev;
 	uint8_t buf[IIO_READ_SAMPLES * IIO_SAMPLE_MAX];
@@ -811,9 +728,6 @@ static int read_samples(struct ftest_ctx *x, uint32_t n, int64_t after,
 			int16_t out[AS9888_AXES];
 			int axis;
 
-			/* only a sample kept shows the capture going on */
-			if (iio_scan_value64(&d->layout[IIO_SCAN_TIMESTAMP], p) <= after)
-				continue;
 			deadline = iio_now_ns(x) + IIO_SAMPLE_STALL_MS * NS_PER_MS;
 			for (axis = 0; axis < AS9888_AXES; axis++)
 				out[axis] = (int16_t)iio_scan_value(&d->layout[axis], p);
@@ -841,6 +755,50 @@ static void capture_stop(struct iio_test_dev *d)
 }
 
 /*
+ * Drop the samples the capture holds: after a DAC write returned, those
+ * were measured before it (the driver writes the DAC in the gap between two
+ * samples, once the sample before the gap is in the buffer), and every
+ * later one after it. 0 or -errno
+ */
+static int drain(struct iio_test_dev *d)
+{
+	uint8_t buf[IIO_READ_SAMPLES * IIO_SAMPLE_MAX];
+	ssize_t got;
+
+	do {
+		got = read(d->capture_fd, buf, sizeof(buf));
+	} while (got > 0 || (got < 0 && errno == EINTR));
+
+	return got < 0 && errno != EAGAIN ? -errno : 0;
+}
+
+/* The capture started: the character device open, the buffer on */
+static int capture_start(struct ftest_ctx *x, const char *step)
+{
+	struct iio_test_dev *d = x->dev;
+	int fd, ret;
+
+	/* a program that took the device since step 1-4 stops the test too */
+	fd = open(d->chardev, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	if (fd < 0 && errno == EBUSY)
+		return device_taken(x, step, "character device free",
+				    "not open elsewhere");
+	if (fd < 0)
+		return ftest_io_failed(x, step, d->chardev, -errno);
+	ret = iio_attr_write(&d->enable, "1");
+	if (ret) {
+		close(fd);
+		if (ret == -EBUSY)
+			return device_taken(x, step, "buffer free",
+					    "not enabled elsewhere");
+		return ftest_io_failed(x, step, "buffer/enable", ret);
+	}
+	d->capture_fd = fd;
+
+	return 0;
+}
+
+/*
  * @n samples measured from now on into @r, the capture started when it is
  * not running: -ETIMEDOUT when it stalls, with *@taken set when the buffer
  * was found off (another program turned it off); the capture stops on any
@@ -852,38 +810,25 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 {
 	struct iio_test_dev *d = x->dev;
 	char val[IIO_ATTR_MAX];
-	int64_t start = ts_now(d);
-	int fd, ret;
+	int ret;
 
 	level_run_init(r);
 	r->status_by_driver = true;
 	*taken = false;
 	if (d->capture_fd < 0) {
-		/* a program that took the device since step 1-4 stops the test too */
-		fd = open(d->chardev, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-		if (fd < 0 && errno == EBUSY)
-			return device_taken(x, step, "character device free",
-					    "not open elsewhere");
-		if (fd < 0)
-			return ftest_io_failed(x, step, d->chardev, -errno);
-		ret = d->enable.fd >= 0 ? 0 :
-		      iio_attr_open(&d->enable, d->dfd, "buffer/enable", true);
-		if (!ret)
-			ret = iio_attr_write(&d->enable, "1");
-		if (ret) {
-			close(fd);
-			if (ret == -EBUSY)
-				return device_taken(x, step, "buffer free",
-						    "not enabled elsewhere");
-			return ftest_io_failed(x, step, "buffer/enable", ret);
-		}
-		d->capture_fd = fd;
+		ret = capture_start(x, step);
+		if (ret)
+			return ret;
 	}
-	/*
-	 * A sample timestamped more than a period after @start was measured
-	 * after it: the driver's periods hold a measurement
-	 */
-	ret = read_samples(x, n, start + d->period_ns, r, why, whylen);
+	if (d->dac_written) {
+		ret = drain(d);
+		if (ret) {
+			capture_stop(d);
+			return ftest_io_failed(x, step, d->chardev, ret);
+		}
+		d->dac_written = false;
+	}
+	ret = read_samples(x, n, r, why, whylen);
 	if (ret == -ETIMEDOUT && iio_attr_read(&d->enable, val, sizeof(val)) > 0)
 		*taken = !strcmp(val, "0");
 	if (ret)

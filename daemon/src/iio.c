@@ -170,19 +170,47 @@ int iio_find_device(const char *devpath, char *out, size_t size)
 int iio_find_magn(const char *accel_dir, char *out, size_t size,
 		  char *parent, size_t parent_size)
 {
-	char real[PATH_MAX];
-	char *base;
+	const char *base = strrchr(accel_dir, '/');
+	char bus[IIO_PATH_MAX], name[IIO_PATH_MAX], real[PATH_MAX];
+	struct dirent *de;
+	int ret = -ENOENT;
+	DIR *d;
 
-	if (!realpath(accel_dir, real))
-		return -errno;
-	base = strrchr(real, '/');
-	if (!base || base == real)
+	if (!base || base == accel_dir)
 		return -ENOENT;
-	*base = '\0';
-	if (parent)
+	/*
+	 * The bus device is @accel_dir/..: the kernel takes ".." from where
+	 * the bus link leads. No realpath(): it reads every link on the way,
+	 * which is slow on a slow system; the devices are found by their
+	 * entries, and named by @accel_dir's own directory (the bus links of
+	 * /sys/bus/iio/devices, or the bus device itself)
+	 */
+	snprintf(bus, sizeof(bus), "%s/..", accel_dir);
+	d = opendir(bus);
+	if (d) {
+		while ((de = readdir(d))) {
+			if (!is_iio_device(de->d_name) ||
+			    !strcmp(de->d_name, base + 1))
+				continue;
+			snprintf(name, sizeof(name), "%s/name", de->d_name);
+			if (iio_read_attr_at(dirfd(d), name, real, sizeof(real)) > 0 &&
+			    !strcmp(real, IIO_MAGN_NAME)) {
+				snprintf(out, size, "%.*s/%s", (int)(base - accel_dir),
+					 accel_dir, de->d_name);
+				ret = 0;
+				break;
+			}
+		}
+		closedir(d);
+	}
+	if (ret && parent) {
+		/* for the message only */
+		if (!realpath(bus, real))
+			return -errno;
 		snprintf(parent, parent_size, "%s", real);
+	}
 
-	return scan(real, IIO_MAGN_NAME, out, size);
+	return ret;
 }
 
 int iio_read_eeprom(const char *dir, uint8_t eeprom[AS9888_EEPROM_LEN])

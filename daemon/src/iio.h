@@ -62,11 +62,12 @@ int iio_find_device(const char *devpath, char *out, size_t size);
 /*
  * The same chip's magnetometer IIO device (IIO_MAGN_NAME) for the
  * accelerometer device at @accel_dir: the sibling iio:deviceM below the
- * bus device that holds it (@accel_dir resolved, as the bus link
- * /sys/bus/iio/devices/iio:deviceN leads there). Its sysfs directory
- * goes into @out; @parent, when not NULL, receives the bus device's
- * directory, for messages. Returns 0, -ENOENT when there is no such
- * device, or -errno when @accel_dir cannot be resolved.
+ * bus device that holds it (@accel_dir/.., where the bus link
+ * /sys/bus/iio/devices/iio:deviceN leads). Its directory goes into @out,
+ * named beside @accel_dir (/sys/bus/iio/devices/iio:deviceM for a bus
+ * link). When there is none, @parent, when not NULL, receives the bus
+ * device's directory, for messages. Returns 0, -ENOENT when there is no
+ * such device, or -errno when @accel_dir cannot be resolved.
  */
 int iio_find_magn(const char *accel_dir, char *out, size_t size,
 		  char *parent, size_t parent_size);

@@ -6,6 +6,7 @@
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -138,8 +139,8 @@ static uint64_t monotonic_ms(void)
 	return (uint64_t)ts.tv_sec * 1000 + (uint64_t)ts.tv_nsec / 1000000;
 }
 
-int iio_wait_buffer_free(const char *dir, uint32_t timeout_ms,
-			 uint32_t poll_ms)
+int iio_wait_enable_off(const struct iio_attr *enable, uint32_t timeout_ms,
+			uint32_t poll_ms)
 {
 	uint64_t end = monotonic_ms() + timeout_ms;
 	char val[IIO_ATTR_MAX];
@@ -149,7 +150,7 @@ int iio_wait_buffer_free(const char *dir, uint32_t timeout_ms,
 			.tv_sec = poll_ms / 1000,
 			.tv_nsec = (long)(poll_ms % 1000) * 1000000,
 		};
-		int ret = iio_read_attr(dir, "buffer/enable", val, sizeof(val));
+		int ret = iio_attr_read(enable, val, sizeof(val));
 
 		if (ret < 0)
 			return ret;
@@ -160,4 +161,21 @@ int iio_wait_buffer_free(const char *dir, uint32_t timeout_ms,
 		while (nanosleep(&nap, &nap) && errno == EINTR)
 			;
 	}
+}
+
+int iio_wait_buffer_free(const char *dir, uint32_t timeout_ms,
+			 uint32_t poll_ms)
+{
+	char path[IIO_PATH_MAX];
+	struct iio_attr enable;
+	int ret;
+
+	snprintf(path, sizeof(path), "%s/buffer/enable", dir);
+	ret = iio_attr_open(&enable, AT_FDCWD, path, false);
+	if (ret)
+		return ret;
+	ret = iio_wait_enable_off(&enable, timeout_ms, poll_ms);
+	iio_attr_close(&enable);
+
+	return ret;
 }

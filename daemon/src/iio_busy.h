@@ -12,6 +12,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "iio_attr.h"
+
 /* How often the wait looks at the buffer again */
 #define IIO_BUSY_POLL_MS	100
 
@@ -32,5 +34,9 @@ int iio_chardev_holders(const char *proc, const char *chardev, char *out,
  */
 int iio_wait_buffer_free(const char *dir, uint32_t timeout_ms,
 			 uint32_t poll_ms);
+
+/* The same on buffer/enable kept open (iio_attr.h) */
+int iio_wait_enable_off(const struct iio_attr *enable, uint32_t timeout_ms,
+			uint32_t poll_ms);
 
 #endif /* AS9888_IIO_BUSY_H */

@@ -55,12 +55,72 @@ restore_unit() {
 	d=$(dev "${1:-}") || d=/sys/none
 	echo "as9888-calibd-restore@$(systemd-escape --path "$d").service"
 }
+# speed_run NAME ARGS...: one factory test (record /root/speed.rec, not the
+# board's); appends its report's duration (ms) to /root/NAME.times when it
+# passed, says why when it did not
+speed_run() {
+	local n=$1 d
+	shift
+	as9888-calibd factory-test "$@" --json --record /root/speed.rec \
+		>/root/"$n".json 2>/root/"$n".err &&
+		grep -q '^  "result": "pass"' /root/"$n".json &&
+		d=$(sed -n 's/^  "duration_ms": \([0-9.]*\),*$/\1/p' /root/"$n".json) &&
+		[ -n "$d" ] && { echo "$d" >>/root/"$n".times; return 0; }
+	echo "BOOTTEST # $n failed: $(head -c 200 /root/"$n".err)"
+	grep '"result": "fail"' /root/"$n".json | head -n 1 | cut -c1-200 | sed 's/^ */BOOTTEST # /'
+	return 1
+}
+# speed_rounds N: the factory test on the raw bus (the driver unloaded,
+# the chip powered again by the adapter) and through the driver, N rounds
+# interleaved, on this stock kernel; prints the best of each and the ratio
+# (what tests/vm/guest/tests/83-factory-speed.sh measures on the debug
+# kernels)
+speed_rounds() {
+	local sim=/sys/kernel/debug/as9888_sim bus="" chip="" n addr gi raw i r i1 i2 best_raw best_iio
+	modprobe i2c-dev
+	for n in /sys/bus/i2c/devices/i2c-*/name; do
+		[ "$(cat "$n")" = as9888-sim-i2c ] && bus=$(basename "$(dirname "$n")")
+	done
+	addr=$(basename "$(readlink -f "$(dev)/..")")
+	addr=0x${addr##*-00}
+	chip=$(gpiodetect | sed -n 's/^\([^ ]*\) \[as9888-sim-gpio\].*/\1/p')
+	gi=$(gpioinfo "$chip")
+	line() { echo "$gi" | sed -n "s/^[[:space:]]*line *\([0-9]*\): *\"AS9888_$1\".*/\1/p"; }
+	raw="--backend raw --i2c-dev /dev/$bus --i2c-address $addr --gpiochip $chip --rstn-line $(line RSTN) --int1-line $(line INT1) --int2-line $(line INT2)"
+	echo "BOOTTEST # raw: $raw"
+	# the kernel switches unused regulators off once, 30 s after its late
+	# initcalls: not under a raw-bus run (tests/vm/guest/lib.sh supply_settled)
+	n=$(dmesg | sed -n 's/^\[ *\([0-9]*\)\.[0-9]*\] Freeing unused kernel.*/\1/p' | head -n 1)
+	while [ -n "$n" ] && [ "$(cut -d. -f1 /proc/uptime)" -lt $((n + 32)) ]; do sleep 1; done
+	rm -f /root/raw.times /root/iio.times
+	cat $sim/unit >/root/speed.unit
+	for i in $(seq "$1"); do
+		modprobe -r as9888_i2c
+		# the unit written again: the chip powered on (the driver's
+		# runtime PM had switched its supply off)
+		cat /root/speed.unit >$sim/unit
+		speed_run raw $raw
+		modprobe as9888_i2c
+		# restore@ applies the board's record first: not during the test
+		wait_dev && wait_applied
+		speed_run iio --backend iio
+	done
+	best_raw=$(sort -n /root/raw.times 2>/dev/null | head -n 1)
+	best_iio=$(sort -n /root/iio.times 2>/dev/null | head -n 1)
+	r=$(awk -v i="$best_iio" -v r="$best_raw" 'BEGIN { if (i > 0 && r > 0) printf "%.2f", i / r }')
+	echo "BOOTTEST # raw: $(tr '\n' ' ' </root/raw.times 2>/dev/null)ms; iio: $(tr '\n' ' ' </root/iio.times 2>/dev/null)ms"
+	echo "BOOTTEST # AS9888-METRIC factory_iio_raw_ratio_stock_kernel=${r:-none} factory_raw_ms=${best_raw:-none} factory_iio_ms=${best_iio:-none} (kernel $(uname -r), best of $1 each, report duration)"
+	check "factory-test speed: --backend raw passed in every round" \
+		eval '[ "$(wc -l </root/raw.times 2>/dev/null)" -eq "$1" ]'
+	check "factory-test speed: --backend iio passed in every round" \
+		eval '[ "$(wc -l </root/iio.times 2>/dev/null)" -eq "$1" ]'
+}
 # the magnetometer's calibration in the driver, as the factory phase saved it
 magn_applied() { [ -s /root/magn-cal ] && [ "$(magn_cal)" = "$(cat /root/magn-cal)" ]; }
 
 # the plan: 5 checks for every phase, then the phase's own
 case $phase in
-factory) echo "BOOTTEST plan $((5 + 11))" ;;
+factory) echo "BOOTTEST plan $((5 + 11 + 2))" ;;
 boot) echo "BOOTTEST plan $((5 + 11 + 2 * 5 + 6))" ;;
 *)
 	echo "BOOTTEST plan 1"
@@ -107,6 +167,9 @@ factory)
 		eval 'as9888-calibd factory-test --backend iio --record "$rec" >/tmp/ft.log 2>&1'
 	tail -5 /tmp/ft.log | sed 's/^/BOOTTEST # /'
 	check "record written" test -s "$rec"
+	# the factory test's speed on this stock kernel, raw bus against the
+	# driver, before the board starts tumbling for magn-calibrate
+	speed_rounds 5
 	# the board's magnetic world (adapter knobs): hard and soft iron, a
 	# little noise, and a tumble that turns it a degree a measurement
 	# (through the driver a sample is six reads, each a measurement: a

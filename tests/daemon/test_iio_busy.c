@@ -190,6 +190,25 @@ static void wait_gives_up(void **state)
 	assert_int_equal(iio_wait_buffer_free(dir, 250, 10), -EBUSY);
 }
 
+/*
+ * A value printed with its string's NUL, as the IIO core prints some
+ * (current_timestamp_clock): read without it
+ */
+static void wait_value_with_nul(void **state)
+{
+	char dir[PATH_MAX], path[PATH_MAX];
+	FILE *f;
+
+	(void)state;
+	snprintf(path, sizeof(path), "%s/dev/buffer/enable", tmp);
+	f = fopen(path, "w");
+	assert_non_null(f);
+	assert_int_equal(fwrite("0\n", 1, 3, f), 3);
+	assert_int_equal(fclose(f), 0);
+	snprintf(dir, sizeof(dir), "%s/dev", tmp);
+	assert_int_equal(iio_wait_buffer_free(dir, 0, IIO_BUSY_POLL_MS), 0);
+}
+
 /* Another process ends its capture: the wait ends, long before its bound */
 static void wait_for_turn(void **state)
 {
@@ -234,6 +253,7 @@ int main(void)
 		cmocka_unit_test(holders_real_proc),
 		cmocka_unit_test(wait_free_at_once),
 		cmocka_unit_test(wait_gives_up),
+		cmocka_unit_test(wait_value_with_nul),
 		cmocka_unit_test(wait_for_turn),
 		cmocka_unit_test(wait_read_error),
 	};

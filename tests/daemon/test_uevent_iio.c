@@ -169,19 +169,28 @@ static void find_magn(void **state)
 {
 	struct fake_sysfs *f = *state;
 	char link[IIO_PATH_MAX], dir[IIO_PATH_MAX], parent[IIO_PATH_MAX];
-	char want[PATH_MAX], want_parent[PATH_MAX], other[512];
+	char want[PATH_MAX], want_parent[PATH_MAX], got[PATH_MAX], other[512];
 
 	resolved(f->magn, want);
 	snprintf(other, sizeof(other), "%s/devices/i2c/1-000c", f->root);
 	resolved(other, want_parent);
-	/* from the bus link, as iio_find_device(NULL) gives it */
+	/*
+	 * from the bus link, as iio_find_device(NULL) gives it: named by its
+	 * own bus link, which leads to the sibling
+	 */
 	snprintf(link, sizeof(link), "%s/bus/iio/devices/iio:device0", f->root);
+	*parent = '\0';
 	assert_int_equal(iio_find_magn(link, dir, sizeof(dir), parent,
 				       sizeof(parent)), 0);
-	assert_string_equal(dir, want);
-	assert_string_equal(parent, want_parent);
+	snprintf(other, sizeof(other), "%s/bus/iio/devices/iio:device1", f->root);
+	assert_string_equal(dir, other);
+	resolved(dir, got);
+	assert_string_equal(got, want);
+	/* found: the bus device is not looked up */
+	assert_string_equal(parent, "");
+	/* from the device's own directory: its sibling there */
 	assert_int_equal(iio_find_magn(f->dev, dir, sizeof(dir), NULL, 0), 0);
-	assert_string_equal(dir, want);
+	assert_string_equal(dir, f->magn);
 
 	/* a second chip's devices: each accelerometer finds its own */
 	add_device(f, "devices/i2c/1-000d", 3, "as9888-magn");

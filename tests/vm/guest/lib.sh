@@ -211,11 +211,29 @@ rebind() {
 client() { cut -d' ' -f2 $SIM/bus; }
 # raw_line GPIOINFO NAME: the number of the line AS9888_NAME in a listing
 raw_line() { sed -n "s/^[[:space:]]*line *\([0-9]*\): *\"AS9888_$2\".*/\1/p" "$1"; }
+# supply_settled: the kernel switches off every unused regulator once,
+# 30 s after its late initcalls (drivers/regulator/core.c,
+# regulator_init_complete). With no driver bound, the chip's supply has no
+# consumer: a raw-bus run at that moment loses the chip's power under it
+# (the chip NAKs, INT1 stays low). Waits until that moment has passed:
+# 32 s after the first "Freeing unused kernel" line, which comes right
+# after the late initcalls. Without that line (the log wrapped, long after
+# boot) it has passed.
+supply_settled() {
+	_ss_t=$(dmesg | sed -n 's/^\[ *\([0-9]*\)\.[0-9]*\] Freeing unused kernel.*/\1/p' | head -n 1)
+	[ -n "$_ss_t" ] || return 0
+	_ss_end=$((_ss_t + 32))
+	_ss_now=$(cut -d. -f1 /proc/uptime)
+	[ "$_ss_now" -ge $_ss_end ] && return 0
+	diag "waiting $((_ss_end - _ss_now)) s for the kernel's switch-off of unused regulators (uptime $_ss_end s) before the raw bus is used"
+	while [ "$(cut -d. -f1 /proc/uptime)" -lt $_ss_end ]; do sleep 1; done
+}
 # raw_find GPIOINFO: where the chip is for --backend raw, by name: the
 # adapter as9888-sim-i2c (BUS), the as9888 client on it (CLIENT, ADDR), the
 # GPIO chip as9888-sim-gpio (GCHIP, its lines listed into GPIOINFO) and its
-# lines RSTN, INT1, INT2; RAW: the daemon's options for all of them
+# lines RSTN, INT1, INT2; RAW: the daemon's options for all of them, once the supply_settled
 raw_find() {
+	supply_settled
 	BUS=""
 	for _rf_n in /sys/bus/i2c/devices/i2c-*/name; do
 		[ "$(cat "$_rf_n")" = as9888-sim-i2c ] && BUS=$(basename "$(dirname "$_rf_n")")
