@@ -76,13 +76,13 @@ speed_run() {
 # (what tests/vm/guest/tests/83-factory-speed.sh measures on the debug
 # kernels)
 speed_rounds() {
-	local sim=/sys/kernel/debug/as9888_sim bus="" chip="" n addr gi raw i r i1 i2 best_raw best_iio
+	local sim=/sys/kernel/debug/as9888_sim bus="" chip="" n addr client gi raw i r rounds=$1 best_raw best_iio
 	modprobe i2c-dev
 	for n in /sys/bus/i2c/devices/i2c-*/name; do
 		[ "$(cat "$n")" = as9888-sim-i2c ] && bus=$(basename "$(dirname "$n")")
 	done
-	addr=$(basename "$(readlink -f "$(dev)/..")")
-	addr=0x${addr##*-00}
+	client=$(basename "$(readlink -f "$(dev)/..")")
+	addr=0x${client##*-00}
 	chip=$(gpiodetect | sed -n 's/^\([^ ]*\) \[as9888-sim-gpio\].*/\1/p')
 	gi=$(gpioinfo "$chip")
 	line() { echo "$gi" | sed -n "s/^[[:space:]]*line *\([0-9]*\): *\"AS9888_$1\".*/\1/p"; }
@@ -94,26 +94,33 @@ speed_rounds() {
 	while [ -n "$n" ] && [ "$(cut -d. -f1 /proc/uptime)" -lt $((n + 32)) ]; do sleep 1; done
 	rm -f /root/raw.times /root/iio.times
 	cat $sim/unit >/root/speed.unit
-	for i in $(seq "$1"); do
+	for i in $(seq "$rounds"); do
+		# the driver unloaded and kept off the chip: udev would load
+		# and bind it again for the device the unit re-creates
 		modprobe -r as9888_i2c
+		echo 0 >/sys/bus/i2c/drivers_autoprobe
 		# the unit written again: the chip powered on (the driver's
 		# runtime PM had switched its supply off)
 		cat /root/speed.unit >$sim/unit
 		speed_run raw $raw
+		echo 1 >/sys/bus/i2c/drivers_autoprobe
 		modprobe as9888_i2c
+		[ -e "/sys/bus/i2c/devices/$client/driver" ] ||
+			echo "$client" >/sys/bus/i2c/drivers/as9888_i2c/bind
 		# restore@ applies the board's record first: not during the test
 		wait_dev && wait_applied
 		speed_run iio --backend iio
 	done
+	echo 1 >/sys/bus/i2c/drivers_autoprobe
 	best_raw=$(sort -n /root/raw.times 2>/dev/null | head -n 1)
 	best_iio=$(sort -n /root/iio.times 2>/dev/null | head -n 1)
 	r=$(awk -v i="$best_iio" -v r="$best_raw" 'BEGIN { if (i > 0 && r > 0) printf "%.2f", i / r }')
 	echo "BOOTTEST # raw: $(tr '\n' ' ' </root/raw.times 2>/dev/null)ms; iio: $(tr '\n' ' ' </root/iio.times 2>/dev/null)ms"
-	echo "BOOTTEST # AS9888-METRIC factory_iio_raw_ratio_stock_kernel=${r:-none} factory_raw_ms=${best_raw:-none} factory_iio_ms=${best_iio:-none} (kernel $(uname -r), best of $1 each, report duration)"
+	echo "BOOTTEST # AS9888-METRIC factory_iio_raw_ratio_stock_kernel=${r:-none} factory_raw_ms=${best_raw:-none} factory_iio_ms=${best_iio:-none} (kernel $(uname -r), best of $rounds each, report duration)"
 	check "factory-test speed: --backend raw passed in every round" \
-		eval '[ "$(wc -l </root/raw.times 2>/dev/null)" -eq "$1" ]'
+		eval '[ "$(wc -l </root/raw.times 2>/dev/null)" -eq "$rounds" ]'
 	check "factory-test speed: --backend iio passed in every round" \
-		eval '[ "$(wc -l </root/iio.times 2>/dev/null)" -eq "$1" ]'
+		eval '[ "$(wc -l </root/iio.times 2>/dev/null)" -eq "$rounds" ]'
 }
 # the magnetometer's calibration in the driver, as the factory phase saved it
 magn_applied() { [ -s /root/magn-cal ] && [ "$(magn_cal)" = "$(cat /root/magn-cal)" ]; }
