@@ -197,6 +197,12 @@ int iio_find_magn(const char *accel_dir, char *out, size_t size,
 			    !strcmp(real, IIO_MAGN_NAME)) {
 				snprintf(out, size, "%.*s/%s", (int)(base - accel_dir),
 					 accel_dir, de->d_name);
+				/*
+				 * a bus link comes a moment after its device's
+				 * directory (device_add()): until then, by ..
+				 */
+				if (access(out, F_OK))
+					snprintf(out, size, "%s/%s", bus, de->d_name);
 				ret = 0;
 				break;
 			}

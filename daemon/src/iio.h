@@ -65,7 +65,8 @@ int iio_find_device(const char *devpath, char *out, size_t size);
  * bus device that holds it (@accel_dir/.., where the bus link
  * /sys/bus/iio/devices/iio:deviceN leads). Its directory goes into @out,
  * named beside @accel_dir (/sys/bus/iio/devices/iio:deviceM for a bus
- * link). When there is none, @parent, when not NULL, receives the bus
+ * link), or as @accel_dir/../iio:deviceM while its bus link is not there
+ * yet. When there is none, @parent, when not NULL, receives the bus
  * device's directory, for messages. Returns 0, -ENOENT when there is no
  * such device, or -errno when @accel_dir cannot be resolved.
  */

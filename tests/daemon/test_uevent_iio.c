@@ -170,6 +170,7 @@ static void find_magn(void **state)
 	struct fake_sysfs *f = *state;
 	char link[IIO_PATH_MAX], dir[IIO_PATH_MAX], parent[IIO_PATH_MAX];
 	char want[PATH_MAX], want_parent[PATH_MAX], got[PATH_MAX], other[512];
+	char moved[600];
 
 	resolved(f->magn, want);
 	snprintf(other, sizeof(other), "%s/devices/i2c/1-000c", f->root);
@@ -188,6 +189,18 @@ static void find_magn(void **state)
 	assert_string_equal(got, want);
 	/* found: the bus device is not looked up */
 	assert_string_equal(parent, "");
+	/*
+	 * its bus link not there yet (device_add() makes it after the
+	 * directory): named through the accelerometer's ..
+	 */
+	snprintf(moved, sizeof(moved), "%s/bus/iio/devices/gone-link", f->root);
+	assert_int_equal(rename(other, moved), 0);
+	assert_int_equal(iio_find_magn(link, dir, sizeof(dir), NULL, 0), 0);
+	assert_int_equal(rename(moved, other), 0);
+	snprintf(moved, sizeof(moved), "%s/../iio:device1", link);
+	assert_string_equal(dir, moved);
+	resolved(dir, got);
+	assert_string_equal(got, want);
 	/* from the device's own directory: its sibling there */
 	assert_int_equal(iio_find_magn(f->dev, dir, sizeof(dir), NULL, 0), 0);
 	assert_string_equal(dir, f->magn);
