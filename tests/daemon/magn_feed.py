@@ -7,7 +7,8 @@ magn_feed.py SOCKET N SEED HX HY HZ: N samples of a board with hard iron
 orientations in a 48 uT field dipping 60 deg, 0.4 uT noise, sent as the
 driver's output with its calibration at the defaults (calibbias 0,
 calibscale 1: no driver here), one "magn-feed" request each. Prints the
-replies' last fit line; exits 1 when a request is refused.
+replies' last fit line; exits 1 when a request is refused, or when the
+daemon stalls (no reply for STALL_S: a stall, not a time budget).
 """
 import math
 import random
@@ -15,6 +16,9 @@ import socket
 import sys
 
 S = [[1.05, 0.03, -0.02], [0.03, 0.95, 0.04], [-0.02, 0.04, 1.02]]
+# No byte from the daemon for this long: it stalled (a busy machine only
+# slows a reply down)
+STALL_S = 120
 
 
 def rot(q, v):
@@ -48,15 +52,22 @@ def main():
              for i in range(3)]
         line = "magn-feed %.3f %.3f %.3f %.0f %.0f %.0f\n" % (*m, *g)
         s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-        s.connect(path)
-        s.sendall(line.encode())
+        s.settimeout(STALL_S)
         reply = b""
-        while True:
-            chunk = s.recv(4096)
-            if not chunk:
-                break
-            reply += chunk
-        s.close()
+        try:
+            s.connect(path)
+            s.sendall(line.encode())
+            while True:
+                chunk = s.recv(4096)
+                if not chunk:
+                    break
+                reply += chunk
+        except socket.timeout:
+            print("stalled: nothing from %s for %d s" % (path, STALL_S),
+                  file=sys.stderr)
+            sys.exit(1)
+        finally:
+            s.close()
         text = reply.decode()
         if not text.rstrip().endswith("exit status 0"):
             print("refused: " + text, file=sys.stderr)
