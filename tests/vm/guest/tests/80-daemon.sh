@@ -7,14 +7,11 @@
 # vertical one); also after a driver reload. Refused, with nothing applied:
 # a record of another chip, and a record of the simulator (source =
 # simulator: a simulated calibration is never applied to a chip).
-# Leaves /tmp/rec and /tmp/unit.txt for 82 and 85.
+# Leaves /tmp/rec and /tmp/unit.txt for 85 and 86 (lib.sh daemon_fixture).
 plan 19
 load_sim
 load_driver
-U="temperature = 25
-offset = 40 -25 60
-noise = 0.5
-seed = 7"
+U=$HEALTHY_UNIT
 printf '%s\n' "$U" > /tmp/unit.txt
 dev_stale
 printf '%s\n' "$U" > $SIM/unit

@@ -3,13 +3,14 @@
 # device present at start, and again by itself after a module reload and an
 # unbind/bind (real kernel uevents); the driver then holds the calibration
 # the record implies (calibbias) and reads 0, 0 and 1 g;
-# requests work; SIGTERM stops it. Needs /tmp/rec and the unit of
-# 80-daemon.sh.
+# requests work; SIGTERM stops it. Uses /tmp/rec and the unit of
+# 80-daemon.sh (daemon_fixture makes them when 80 did not run).
 plan 9
 CALIBD=/bin/as9888-calibd
 SOCK=/tmp/calibd.sock
 
 # the unit of 80-daemon.sh, which the record is for
+daemon_fixture
 load_sim
 load_driver
 dev_stale

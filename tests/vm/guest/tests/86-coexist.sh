@@ -8,14 +8,16 @@
 # holder and change nothing, leaving the client's capture running. Daemon
 # first: a libiio client that starts during check turns the buffer off
 # (libiio does so before it finds the device taken); check starts that run
-# again and passes, and the client gets the buffer afterwards. Needs
-# /tmp/rec and the unit of 80-daemon.sh.
+# again and passes, and the client gets the buffer afterwards. Uses
+# /tmp/rec and the unit of 80-daemon.sh (daemon_fixture makes them when
+# 80 did not run).
 plan 22
 CALIBD=/bin/as9888-calibd
 SOCK=/tmp/coexist.sock
 O=/tmp/coexist
 mkdir -p $O
 
+daemon_fixture
 load_sim
 load_driver
 dev_stale
