@@ -78,6 +78,12 @@
 #define IIO_TEST_BUFFER_LEN	"256"
 /* Samples taken from the buffer in one read */
 #define IIO_READ_SAMPLES	32
+/*
+ * Reads that drop what the capture holds: twice the buffer's length. A
+ * capture that still has samples after them is delivering faster than
+ * any rate the driver offers
+ */
+#define IIO_DRAIN_READS_MAX	16
 /* The largest sample of the test's channels, in bytes */
 #define IIO_SAMPLE_MAX		32
 /*
@@ -128,15 +134,13 @@ struct saved_attr {
  * @chardev:	its character device
  * @trigger:	the name of its data-ready trigger
  * @layout:	where each of scan_channel[] sits in a sample
- * @sample_bytes: size of one buffer sample
+ * @sample_bytes: size of one buffer sample; 0 until @layout is read (at
+ *		the first buffer set-up)
  * @saved:	attributes to put back at the end, in this order
  * @n_saved:	how many
  * @calibbias:	in_accel_{x,y,z}_calibbias, open (their @saved entries')
  * @enable:	buffer/enable, open from step 1-4 on
- * @layout_known: @layout and @sample_bytes read (at the first buffer set-up)
  * @capture_fd:	the character device while the test's capture runs, else -1
- * @dac_written: the DAC was written while the capture ran: the samples the
- *		buffer holds were measured before
  * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
  * @comp:	what the driver compensates the samples with: the EEPROM
  *		and the calibration the last DAC write read back
@@ -154,9 +158,7 @@ struct iio_test_dev {
 	unsigned int n_saved;
 	struct iio_attr calibbias[AS9888_AXES];
 	struct iio_attr enable;
-	bool layout_known;
 	int capture_fd;
-	bool dac_written;
 	bool int1_seen;
 	struct accel_comp comp;
 };
@@ -270,8 +272,6 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 		return iio_failed(x, step, "DAC through calibbias", err, ret);
 	memcpy(x->dac, got, AS9888_AXES);
 	*same = !memcmp(got, dac, AS9888_AXES);
-	if (d->capture_fd >= 0)
-		d->dac_written = true;
 
 	return 0;
 }
@@ -571,7 +571,6 @@ static int scan_layout(struct iio_test_dev *d, const char **what)
 	if (ret > IIO_SAMPLE_MAX)
 		return -E2BIG;
 	d->sample_bytes = (unsigned int)ret;
-	d->layout_known = true;
 
 	return 0;
 }
@@ -649,7 +648,7 @@ static int buffer_setup(struct ftest_ctx *x)
 	ret = scan_enable(d);
 	if (ret)
 		return ftest_io_failed(x, "3-1", "scan elements", ret);
-	if (!d->layout_known) {
+	if (!d->sample_bytes) {
 		ret = scan_layout(d, &what);
 		if (ret)
 			return ftest_io_failed(x, "3-1", what, ret);
@@ -758,14 +757,17 @@ static void capture_stop(struct iio_test_dev *d)
  * Drop the samples the capture holds: after a DAC write returned, those
  * were measured before it (the driver writes the DAC in the gap between two
  * samples, once the sample before the gap is in the buffer), and every
- * later one after it. 0 or -errno
+ * later one after it. 0, -EOVERFLOW when it does not run dry, or -errno
  */
 static int drain(struct iio_test_dev *d)
 {
 	uint8_t buf[IIO_READ_SAMPLES * IIO_SAMPLE_MAX];
+	unsigned int reads = 0;
 	ssize_t got;
 
 	do {
+		if (reads++ == IIO_DRAIN_READS_MAX)
+			return -EOVERFLOW;
 		got = read(d->capture_fd, buf, sizeof(buf));
 	} while (got > 0 || (got < 0 && errno == EINTR));
 
@@ -819,14 +821,6 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 		ret = capture_start(x, step);
 		if (ret)
 			return ret;
-	}
-	if (d->dac_written) {
-		ret = drain(d);
-		if (ret) {
-			capture_stop(d);
-			return ftest_io_failed(x, step, d->chardev, ret);
-		}
-		d->dac_written = false;
 	}
 	ret = read_samples(x, n, r, why, whylen);
 	if (ret == -ETIMEDOUT && iio_attr_read(&d->enable, val, sizeof(val)) > 0)
@@ -901,12 +895,19 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 
 static int iio_level_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES])
 {
+	struct iio_test_dev *d = x->dev;
 	bool same;
 	int ret;
 
 	ret = put_dac(x, dac, "3-26", &same);
 	if (ret)
 		return ret;
+	/* what the running capture holds was measured with the DAC before */
+	ret = d->capture_fd >= 0 ? drain(d) : 0;
+	if (ret) {
+		capture_stop(d);
+		return ftest_io_failed(x, "3-26", d->chardev, ret);
+	}
 	ftest_judge(x, "3-26", "DAC written (3-24..3-26, D2)", same,
 		    "read-back equals DACopt", "0x%02x 0x%02x 0x%02x",
 		    x->dac[0], x->dac[1], x->dac[2]);

@@ -171,7 +171,8 @@ int iio_find_magn(const char *accel_dir, char *out, size_t size,
 		  char *parent, size_t parent_size)
 {
 	const char *base = strrchr(accel_dir, '/');
-	char bus[IIO_PATH_MAX], name[IIO_PATH_MAX], real[PATH_MAX];
+	char bus[IIO_PATH_MAX], rel[IIO_PATH_MAX], name[IIO_ATTR_MAX];
+	char real[PATH_MAX];
 	struct dirent *de;
 	int ret = -ENOENT;
 	DIR *d;
@@ -192,9 +193,9 @@ int iio_find_magn(const char *accel_dir, char *out, size_t size,
 			if (!is_iio_device(de->d_name) ||
 			    !strcmp(de->d_name, base + 1))
 				continue;
-			snprintf(name, sizeof(name), "%s/name", de->d_name);
-			if (iio_read_attr_at(dirfd(d), name, real, sizeof(real)) > 0 &&
-			    !strcmp(real, IIO_MAGN_NAME)) {
+			snprintf(rel, sizeof(rel), "%s/name", de->d_name);
+			if (iio_read_attr_at(dirfd(d), rel, name, sizeof(name)) > 0 &&
+			    !strcmp(name, IIO_MAGN_NAME)) {
 				snprintf(out, size, "%.*s/%s", (int)(base - accel_dir),
 					 accel_dir, de->d_name);
 				/*

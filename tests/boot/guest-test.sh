@@ -91,7 +91,10 @@ speed_rounds() {
 	# the kernel switches unused regulators off once, 30 s after its late
 	# initcalls: not under a raw-bus run (tests/vm/guest/lib.sh supply_settled)
 	n=$(dmesg | sed -n 's/^\[ *\([0-9]*\)\.[0-9]*\] Freeing unused kernel.*/\1/p' | head -n 1)
-	while [ -n "$n" ] && [ "$(cut -d. -f1 /proc/uptime)" -lt $((n + 32)) ]; do sleep 1; done
+	while [ -n "$n" ] && [ "$(cut -d. -f1 /proc/uptime)" -lt $((n + 45)) ] &&
+		! dmesg | grep -q 'as9888-sim-supply: disabling'; do
+		sleep 1
+	done
 	rm -f /root/raw.times /root/iio.times
 	cat $sim/unit >/root/speed.unit
 	for i in $(seq "$rounds"); do

@@ -235,20 +235,26 @@ daemon_fixture() {
 }
 # supply_settled: the kernel switches off every unused regulator once,
 # 30 s after its late initcalls (drivers/regulator/core.c,
-# regulator_init_complete). With no driver bound, the chip's supply has no
-# consumer: a raw-bus run at that moment loses the chip's power under it
-# (the chip NAKs, INT1 stays low). Waits until that moment has passed:
-# 32 s after the first "Freeing unused kernel" line, which comes right
-# after the late initcalls. Without that line (the log wrapped, long after
-# boot) it has passed.
+# regulator_init_complete, a delayed work item). With no driver bound, the
+# chip's supply has no consumer: a raw-bus run at that moment loses the
+# chip's power under it (the chip NAKs, INT1 stays low). Waits until that
+# has happened: the kernel's "as9888-sim-supply: disabling" line, or, when
+# the supply was in use or off then (no line), 45 s after the first
+# "Freeing unused kernel" line, which comes right after the late initcalls
+# (15 s for a work item late on a loaded guest). Without that line (the
+# log wrapped, long after boot) it has happened.
+SUPPLY_SETTLE_S=45
 supply_settled() {
 	_ss_t=$(dmesg | sed -n 's/^\[ *\([0-9]*\)\.[0-9]*\] Freeing unused kernel.*/\1/p' | head -n 1)
 	[ -n "$_ss_t" ] || return 0
-	_ss_end=$((_ss_t + 32))
-	_ss_now=$(cut -d. -f1 /proc/uptime)
-	[ "$_ss_now" -ge $_ss_end ] && return 0
-	diag "waiting $((_ss_end - _ss_now)) s for the kernel's switch-off of unused regulators (uptime $_ss_end s) before the raw bus is used"
-	while [ "$(cut -d. -f1 /proc/uptime)" -lt $_ss_end ]; do sleep 1; done
+	_ss_end=$((_ss_t + SUPPLY_SETTLE_S))
+	_ss_said=""
+	while [ "$(cut -d. -f1 /proc/uptime)" -lt $_ss_end ] &&
+		! dmesg | grep -q 'as9888-sim-supply: disabling'; do
+		[ -n "$_ss_said" ] || diag "waiting for the kernel's switch-off of unused regulators (by uptime $_ss_end s) before the raw bus is used"
+		_ss_said=1
+		sleep 1
+	done
 }
 # raw_find GPIOINFO: where the chip is for --backend raw, by name: the
 # adapter as9888-sim-i2c (BUS), the as9888 client on it (CLIENT, ADDR), the
