@@ -105,6 +105,7 @@
 #define IIO_OVERSAMPLING_OFF	"1"
 #define IIO_OVERSAMPLING_ALPF	"4"
 #define IIO_SELFTEST_READINGS	"selftest_readings"
+#define IIO_TRIGGER_ATTR	"trigger/current_trigger"
 
 /* The buffer's channels the test uses, in the order of this table */
 static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
@@ -114,14 +115,15 @@ static const char *const scan_channel[IIO_SCAN_CHANNELS] = {
 
 /*
  * An attribute as found: @changed once the test wrote another value to
- * it, which finish() then puts back. @file is kept open from the first
- * read to the end of the test: the test reads and writes these again and
- * again (iio_attr.h)
+ * it, which finish() then puts back; @set once change_attr() wrote it or
+ * found it as wanted. @file is kept open from the first read to the end of
+ * the test: the test reads and writes these again and again (iio_attr.h)
  */
 struct saved_attr {
 	char name[IIO_NAME_MAX];
 	char value[IIO_ATTR_MAX];
 	bool changed;
+	bool set;
 	struct iio_attr file;
 };
 
@@ -164,8 +166,7 @@ struct iio_test_dev {
 };
 
 /*
- * Remember @name's value, once; *@a receives its entry. 1 when it was
- * read now, 0 when it had been saved before, or -errno.
+ * Remember @name's value, once; *@a receives its entry. 0, or -errno.
  */
 static int save_attr(struct iio_test_dev *d, const char *name,
 		     struct saved_attr **a)
@@ -193,28 +194,32 @@ static int save_attr(struct iio_test_dev *d, const char *name,
 		return ret;
 	}
 	s->changed = false;
+	s->set = false;
 	d->n_saved++;
 	*a = s;
 
-	return 1;
+	return 0;
 }
 
 /*
  * Save, then write @value to @name. An attribute that reads @value as it
- * is saved is left alone (and not put back): each write to the driver's
- * attributes costs a system call and, for the buffer's, the IIO core's
- * locks. Once saved, it is always written: another program may have
- * changed it since (a level run taken again sets the buffer up again).
+ * was saved is left alone (and not put back) the first time: each write to
+ * the driver's attributes costs a system call and, for the buffer's, the
+ * IIO core's locks. After that it is always written: another program may
+ * have changed it since (a level run taken again sets the buffer up again).
  */
 static int change_attr(struct iio_test_dev *d, const char *name,
 		       const char *value)
 {
 	struct saved_attr *a;
+	bool first;
 	int ret = save_attr(d, name, &a);
 
 	if (ret < 0)
 		return ret;
-	if (ret && !strcmp(a->value, value))
+	first = !a->set;
+	a->set = true;
+	if (first && !strcmp(a->value, value))
 		return 0;
 	a->changed = true;
 
@@ -278,22 +283,35 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 
 /*
  * The driver's data-ready trigger, named as9888-dev<N> after the
- * accelerometer device iio:device<N>
+ * accelerometer device iio:device<N>, into d->trigger: 0, or -ENOENT when
+ * there is none. @current: the device's current_trigger as found.
  */
-static int find_trigger(struct iio_test_dev *d)
+static int find_trigger(struct iio_test_dev *d, const char *current)
 {
 	const char *base = strrchr(d->dir, '/');
 	char bus[IIO_PATH_MAX], name[IIO_NAME_MAX], want[IIO_NAME_MAX];
 	struct dirent *de;
 	DIR *dir;
-	int ret = -ENOENT;
+	int ret;
 
 	snprintf(want, sizeof(want), "%s-dev%s", IIO_CHIP_NAME,
 		 base + 1 + strlen(IIO_DEVICE_PREFIX));
+	/*
+	 * The device's trigger is that one already (the driver sets it when
+	 * it binds): current_trigger names only a registered trigger, and the
+	 * IIO core registers no two of one name. No need to look through the
+	 * bus then.
+	 */
+	if (!strcmp(current, want)) {
+		snprintf(d->trigger, sizeof(d->trigger), "%s", want);
+		return 0;
+	}
+
 	snprintf(bus, sizeof(bus), "%s/bus/iio/devices", iio_sysfs_root());
 	dir = opendir(bus);
 	if (!dir)
 		return -errno;
+	ret = -ENOENT;
 	while ((de = readdir(dir))) {
 		char tdir[IIO_PATH_MAX];
 
@@ -656,7 +674,7 @@ static int buffer_setup(struct ftest_ctx *x)
 	ret = fastest_rate(x, rate, sizeof(rate));
 	if (ret)
 		return ret;
-	ret = change_attr(d, "trigger/current_trigger", d->trigger);
+	ret = change_attr(d, IIO_TRIGGER_ATTR, d->trigger);
 	if (!ret)
 		ret = change_attr(d, "buffer/length", IIO_TEST_BUFFER_LEN);
 	if (!ret)
@@ -670,6 +688,7 @@ static int buffer_setup(struct ftest_ctx *x)
 static int iio_level_setup(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
+	struct saved_attr *current;
 	int ret;
 
 	ret = change_attr(d, IIO_OVERSAMPLING_ATTR,
@@ -677,7 +696,11 @@ static int iio_level_setup(struct ftest_ctx *x)
 	if (ret)
 		return ftest_io_failed(x, "3-1", IIO_OVERSAMPLING_ATTR, ret);
 	d->comp.ee = x->res->ee;
-	ret = find_trigger(d);
+	/* saved before the buffer's set-up changes it, as it would be there */
+	ret = save_attr(d, IIO_TRIGGER_ATTR, &current);
+	if (ret < 0)
+		return ftest_io_failed(x, "3-1", IIO_TRIGGER_ATTR, ret);
+	ret = find_trigger(d, current->value);
 	if (!ftest_judge(x, "3-1.trigger", "data-ready trigger", !ret,
 			 "the driver's INT1 trigger exists",
 			 *d->trigger ? "%s" :

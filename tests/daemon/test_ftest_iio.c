@@ -507,6 +507,67 @@ static void selftest_without_magn_fails(void **state)
 }
 
 /*
+ * The device's current trigger is its data-ready trigger already (as the
+ * driver leaves it when it binds): the IIO core names only registered
+ * triggers there, so the test takes it without looking through the bus;
+ * here the bus's trigger0 is another device's, which a look would not
+ * accept. Any other current trigger and the bus decides (no_trigger_fails).
+ */
+static void current_trigger_taken(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+	char dir[512];
+
+	snprintf(dir, sizeof(dir), "%s/bus/iio/devices/trigger0", f->root);
+	fake_put(dir, "name", "as9888-dev7\n");
+	put_initial(f);
+	fake_put(f->dev, "trigger/current_trigger", "as9888-dev0\n");
+	run(f, &res);
+	fake_put(dir, "name", "as9888-dev0\n");
+	j = find(&res.report, "3-1", "data-ready trigger");
+	assert_int_equal(j->result, JUDGMENT_PASS);
+	assert_string_equal(j->measured, "as9888-dev0");
+	assert_string_equal(report_first_failure(&res.report)->step, "3-3");
+	put_initial(f);
+	ftest_result_free(&res);
+
+	/* another device's trigger current: the bus has none of this one */
+	fake_put(dir, "name", "as9888-dev7\n");
+	fake_put(f->dev, "trigger/current_trigger", "as9888-dev7\n");
+	run(f, &res);
+	fake_put(dir, "name", "as9888-dev0\n");
+	j = report_first_failure(&res.report);
+	assert_string_equal(j->id, "3-1.trigger");
+	put_initial(f);
+	ftest_result_free(&res);
+}
+
+/* current_trigger unreadable: 3-1 fails naming it, nothing left changed */
+static void current_trigger_unreadable(void **state)
+{
+	const struct fake_sysfs *f = *state;
+	const struct judgment *j;
+	struct ftest_result res;
+	char path[1024];
+
+	put_initial(f);
+	snprintf(path, sizeof(path), "%s/trigger/current_trigger", f->dev);
+	assert_int_equal(unlink(path), 0);
+	assert_int_equal(mkdir(path, 0700), 0);
+	run(f, &res);
+	assert_int_equal(rmdir(path), 0);
+	j = report_first_failure(&res.report);
+	assert_non_null(j);
+	assert_string_equal(j->step, "3-1");
+	assert_non_null(strstr(j->name, "trigger/current_trigger"));
+	fake_put(f->dev, "trigger/current_trigger", "\n");
+	all_put_back(f);
+	ftest_result_free(&res);
+}
+
+/*
  * INT1 not wired to the driver: no data-ready trigger of this device (only
  * another's); step 3 stops at 3-1.trigger, saying to use the raw backend,
  * and the attributes go back
@@ -560,6 +621,8 @@ int main(void)
 		cmocka_unit_test(selftest_fail_through_magn),
 		cmocka_unit_test(selftest_without_magn_fails),
 		cmocka_unit_test(no_trigger_fails),
+		cmocka_unit_test(current_trigger_taken),
+		cmocka_unit_test(current_trigger_unreadable),
 		cmocka_unit_test(timestamp_off_and_back),
 	};
 
