@@ -70,7 +70,8 @@ struct as9888_magn_calibration {
 /*
  * Read the record at @path (validated whole, checksum included). 0;
  * -ENOENT (no record), -ENODATA (a record without a magnetometer
- * calibration), -EINVAL (not a valid record) or another -errno, with the
+ * calibration), -EINVAL (not a valid record), -EPERM (a record made on
+ * the simulator, which fits no real chip) or another -errno, with the
  * reason in @err.
  */
 int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,

@@ -65,6 +65,12 @@ int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,
 		snprintf(err, errlen, "%s: not a valid record: %s", path, why);
 		return -EINVAL;
 	}
+	/* as restore: what a simulated chip learned fits no real one */
+	if (rec.simulated) {
+		snprintf(err, errlen, "%s was made on the simulator (source = simulator), not on this chip: not used; run as9888-calibd magn-calibrate on this unit",
+			 path);
+		return -EPERM;
+	}
 	m = &rec.magn;
 	if (!m->present) {
 		snprintf(err, errlen, "%s has no magnetometer calibration: run as9888-calibd magn-calibrate",

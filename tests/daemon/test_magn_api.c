@@ -31,9 +31,11 @@ static const uint8_t example[AS9888_EEPROM_LEN] = {
 
 static char dir[64];
 
-static void write_record(const char *name, bool magn, char *path, size_t size)
+static void write_record_from(const char *name, bool magn, bool simulated,
+			      char *path, size_t size)
 {
 	struct calib_record rec = {
+		.simulated = simulated,
 		.dac = { 0x0d, 0x8f, 0x8c },
 		.level_mean_q16 = { 0, 0, 256 << 16 },
 		.t_level_mdegc = 25000,
@@ -65,6 +67,11 @@ static void write_record(const char *name, bool magn, char *path, size_t size)
 	assert_non_null(f);
 	assert_int_equal(fwrite(buf, 1, (size_t)len, f), (size_t)len);
 	fclose(f);
+}
+
+static void write_record(const char *name, bool magn, char *path, size_t size)
+{
+	write_record_from(name, magn, false, path, size);
 }
 
 static void loads_and_corrects(void **state)
@@ -136,6 +143,10 @@ static void refuses(void **state)
 	fclose(f);
 	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EINVAL);
 	assert_non_null(strstr(err, "not a valid record"));
+	/* made on the simulator: never applied to a real chip's output */
+	write_record_from("sim", true, true, path, sizeof(path));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EPERM);
+	assert_non_null(strstr(err, "simulator"));
 	/* a symbolic link is not followed */
 	write_record("cal", true, path, sizeof(path));
 	snprintf(link, sizeof(link), "%s/link", dir);
