@@ -153,6 +153,31 @@ static void run(const struct fake_sysfs *f, struct ftest_result *res)
 }
 
 /*
+ * One run from the initial tree with the attribute @name a directory,
+ * which cannot be read: its first failure, which must be at @step
+ */
+static const struct judgment *fails_unreadable(const struct fake_sysfs *f,
+					       const char *name,
+					       const char *step,
+					       struct ftest_result *res)
+{
+	const struct judgment *j;
+	char path[1024];
+
+	put_initial(f);
+	snprintf(path, sizeof(path), "%s/%s", f->dev, name);
+	assert_int_equal(unlink(path), 0);
+	assert_int_equal(mkdir(path, 0700), 0);
+	run(f, res);
+	assert_int_equal(rmdir(path), 0);
+	j = report_first_failure(&res->report);
+	assert_non_null(j);
+	assert_string_equal(j->step, step);
+
+	return j;
+}
+
+/*
  * Steps 1, 2 and as much of 3 as goes without the driver: a failed
  * judgment returns 0, an interface that fails -errno
  */
@@ -345,18 +370,9 @@ static void unusable_calibration_stops(void **state)
 	const struct fake_sysfs *f = *state;
 	const struct judgment *j;
 	struct ftest_result res;
-	char path[1024];
 
 	/* calibbias cannot be read: the test stops before changing anything */
-	put_initial(f);
-	snprintf(path, sizeof(path), "%s/in_accel_y_calibbias", f->dev);
-	assert_int_equal(unlink(path), 0);
-	assert_int_equal(mkdir(path, 0755), 0);
-	run(f, &res);
-	assert_int_equal(rmdir(path), 0);
-	j = report_first_failure(&res.report);
-	assert_non_null(j);
-	assert_string_equal(j->step, "1-4");
+	j = fails_unreadable(f, "in_accel_y_calibbias", "1-4", &res);
 	assert_string_equal(j->name, "device attributes");
 	if (!strstr(j->measured, "/in_accel_y_calibbias: Is a directory"))
 		fail_msg("unclear: %s", j->measured);
@@ -550,17 +566,8 @@ static void current_trigger_unreadable(void **state)
 	const struct fake_sysfs *f = *state;
 	const struct judgment *j;
 	struct ftest_result res;
-	char path[1024];
 
-	put_initial(f);
-	snprintf(path, sizeof(path), "%s/trigger/current_trigger", f->dev);
-	assert_int_equal(unlink(path), 0);
-	assert_int_equal(mkdir(path, 0700), 0);
-	run(f, &res);
-	assert_int_equal(rmdir(path), 0);
-	j = report_first_failure(&res.report);
-	assert_non_null(j);
-	assert_string_equal(j->step, "3-1");
+	j = fails_unreadable(f, "trigger/current_trigger", "3-1", &res);
 	assert_non_null(strstr(j->name, "trigger/current_trigger"));
 	fake_put(f->dev, "trigger/current_trigger", "\n");
 	all_put_back(f);
