@@ -74,16 +74,19 @@
  * bus transfers. Rates above this are not taken as a driver's.
  */
 #define IIO_TEST_RATE_MAX_HZ	100000
-/* Buffer length during the test, in samples */
-#define IIO_TEST_BUFFER_LEN	"256"
-/* Samples taken from the buffer in one read */
+/* Buffer length during the test, in samples, and as buffer/length takes it */
+#define IIO_TEST_BUFFER_SAMPLES	256
+#define IIO_TEXT_(n)		#n
+#define IIO_TEXT(n)		IIO_TEXT_(n)
+#define IIO_TEST_BUFFER_LEN	IIO_TEXT(IIO_TEST_BUFFER_SAMPLES)
+/* Samples taken from the buffer in one read (at least: the largest size) */
 #define IIO_READ_SAMPLES	32
 /*
- * Reads that drop what the capture holds: twice the buffer's length. A
- * capture that still has samples after them is delivering faster than
- * any rate the driver offers
+ * Reads that drop what the capture holds: at least twice the buffer's
+ * length. A capture that still has samples after them is delivering
+ * faster than any rate the driver offers
  */
-#define IIO_DRAIN_READS_MAX	16
+#define IIO_DRAIN_READS_MAX	(2 * IIO_TEST_BUFFER_SAMPLES / IIO_READ_SAMPLES)
 /* The largest sample of the test's channels, in bytes */
 #define IIO_SAMPLE_MAX		32
 /*
@@ -696,7 +699,10 @@ static int iio_level_setup(struct ftest_ctx *x)
 	if (ret)
 		return ftest_io_failed(x, "3-1", IIO_OVERSAMPLING_ATTR, ret);
 	d->comp.ee = x->res->ee;
-	/* saved before the buffer's set-up changes it, as it would be there */
+	/*
+	 * Saved now, before the buffer's set-up writes it: the value as found
+	 * may name the device's own trigger already
+	 */
 	ret = save_attr(d, IIO_TRIGGER_ATTR, &current);
 	if (ret < 0)
 		return ftest_io_failed(x, "3-1", IIO_TRIGGER_ATTR, ret);

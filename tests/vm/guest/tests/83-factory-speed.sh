@@ -75,8 +75,10 @@ while [ $r -le $ROUNDS ]; do
 	r=$((r + 1))
 done
 
-eq "--backend raw passed in every round" "$(cat $SP/raw.times 2>/dev/null | wc -l)" $ROUNDS
-eq "--backend iio passed in every round" "$(cat $SP/iio.times 2>/dev/null | wc -l)" $ROUNDS
+RAW_N=$(cat $SP/raw.times 2>/dev/null | wc -l)
+IIO_N=$(cat $SP/iio.times 2>/dev/null | wc -l)
+eq "--backend raw passed in every round" "$RAW_N" $ROUNDS
+eq "--backend iio passed in every round" "$IIO_N" $ROUNDS
 RAW_MS=$(sp_best raw 1)
 IIO_MS=$(sp_best iio 1)
 RATIO=$(awk -v i="$IIO_MS" -v r="$RAW_MS" 'BEGIN { if (i > 0 && r > 0) printf "%.2f", i / r }')
@@ -85,8 +87,7 @@ WRATIO=$(awk -v i="$(sp_best iio 2)" -v r="$(sp_best raw 2)" 'BEGIN { if (i > 0 
 # after the other): a second view of the same runs, less moved by one
 # lucky round of either backend; only when every round passed
 PRATIO=none
-if [ "$(cat $SP/raw.times 2>/dev/null | wc -l)" = $ROUNDS ] &&
-	[ "$(cat $SP/iio.times 2>/dev/null | wc -l)" = $ROUNDS ]; then
+if [ "$RAW_N" = $ROUNDS ] && [ "$IIO_N" = $ROUNDS ]; then
 	PRATIO=$(paste -d ' ' $SP/raw.times $SP/iio.times |
 		awk '$1 > 0 { printf "%.4f\n", $3 / $1 }' | sort -n |
 		awk '{ v[NR] = $1 } END { if (NR % 2) printf "%.2f", v[(NR + 1) / 2]; else if (NR) printf "%.2f", (v[NR / 2] + v[NR / 2 + 1]) / 2 }')
