@@ -42,6 +42,8 @@ sp_run() {
 		SR_LAST="$_sr_d ms (wall $_sr_w ms)"
 	else
 		SR_LAST="failed: exit $_sr_rc, $(head -c 200 $SP/$_sr_n.err)"
+		# when the kernel switched the chip's supply off, for the reader
+		diag "at uptime $(cut -d' ' -f1 /proc/uptime) s; kernel: $(dmesg | grep -E 'sim-supply|Freeing unused kernel' | tr '\n' ' ' | cut -c1-300)"
 		grep '"step": .*"result": "fail"' $SP/$_sr_n.json | head -n 1 |
 			sed 's/^ */# /' | cut -c1-300
 	fi
