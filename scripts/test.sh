@@ -67,22 +67,27 @@ passed=0
 failed=0
 skipped=0
 failures=()
+run_start=$(date +%s)
 
 # A stage counts as one test, unless it counts its own (counted=1). A stage
 # that fails without counting a failure of its own counts one more.
+stage_times=()
 stage() {
-	local name=$1 failed0=$failed
+	local name=$1 failed0=$failed t0 verdict
 	shift
 	echo "== $name"
 	counted=0
+	t0=$(date +%s)
 	if "$@"; then
 		[ $counted -eq 1 ] || passed=$((passed + 1))
-		echo "-- $name: pass"
+		verdict=pass
 	else
 		[ "$failed" -gt "$failed0" ] || failed=$((failed + 1))
 		failures+=("$name")
-		echo "-- $name: FAIL"
+		verdict=FAIL
 	fi
+	echo "-- $name: $verdict"
+	stage_times+=("$(printf '%6d s  %-4s  %s' $(($(date +%s) - t0)) "$verdict" "$name")")
 }
 
 meson_suite() {
@@ -221,6 +226,11 @@ if [ "$what" = all ]; then
 	stage "VM bench: driver, adapter and daemon in QEMU on 6.1 and 7.2" vm_bench
 fi
 
+# each stage's wall time, so a slow stage shows (CI has 90 minutes)
+echo
+echo "stage times (wall clock, this run started $(date -u -d "@$run_start" '+%F %T') UTC):"
+printf '  %s\n' "${stage_times[@]}"
+printf '%8d s  total\n' $(($(date +%s) - run_start))
 echo
 [ ${#failures[@]} -eq 0 ] || printf 'failed: %s\n' "${failures[@]}"
 # every failed stage is at least one failure (stage()), so the line and
