@@ -39,6 +39,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "fd_close.h"
 #include "iio.h"
 #include "request.h"
 #include "request_reply.h"
@@ -175,7 +176,7 @@ static pid_t spawn(int keep, int (*fn)(int fd, struct service *s, void *arg),
 	signal(SIGCHLD, SIG_DFL);
 	if (keep >= 0 && keep != 3 && dup2(keep, 3) < 0)
 		_exit(EXIT_FAILURE);
-	close_range(keep >= 0 ? 4 : 3, ~0U, 0);
+	fd_close_from(keep >= 0 ? 4 : 3);
 	_exit(fn(3, s, arg));
 }
 
