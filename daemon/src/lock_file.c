@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 /* The lock file of a record: opened without being fooled, waited for with a deadline. */
 #include <errno.h>
+#include <stdbool.h>
+#include <stdlib.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
@@ -14,12 +16,49 @@
 /* How often a held lock is tried again */
 #define LOCK_RETRY_MS	50
 
+/*
+ * Put a new, private (@mode) lock file at @path in place of the one there:
+ * created beside it and renamed over it, so that a descriptor someone
+ * opened while the old one was readable locks an inode nobody uses.
+ */
+static int lock_file_replace(const char *path, unsigned int mode, char *err,
+			     size_t errlen)
+{
+	char tmp[4096];
+	int fd, ret;
+
+	if (snprintf(tmp, sizeof(tmp), "%s.XXXXXX", path) >= (int)sizeof(tmp)) {
+		snprintf(err, errlen, "lock %s: path too long", path);
+		return -ENAMETOOLONG;
+	}
+	fd = mkostemp(tmp, O_CLOEXEC);
+	if (fd < 0) {
+		ret = -errno;
+		snprintf(err, errlen, "cannot make a private lock beside %s: %s",
+			 path, strerror(-ret));
+		return ret;
+	}
+	ret = fchmod(fd, (mode_t)mode) ? -errno : 0;
+	close(fd);
+	if (!ret && rename(tmp, path))
+		ret = -errno;
+	if (ret) {
+		snprintf(err, errlen, "cannot replace lock %s by a private one: %s",
+			 path, strerror(-ret));
+		unlink(tmp);
+	}
+
+	return ret;
+}
+
 int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen)
 {
 	struct stat st;
 	mode_t loose;
-	int fd;
+	bool replaced = false;
+	int fd, ret;
 
+again:
 	fd = open(path, O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY |
 		  O_CLOEXEC, (mode_t)mode);
 	if (fd < 0) {
@@ -35,17 +74,25 @@ int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen
 	}
 	/*
 	 * flock() works on a descriptor opened read-only: a lock others may
-	 * read is one they may hold. One made looser (by an older version,
-	 * or by hand) is tightened to @mode when it is ours; one that others
-	 * could write is left as it is, for the caller's trust check to refuse.
+	 * read is one they may hold, then and later (a chmod does not take
+	 * back a descriptor). One made looser (by an older version, or by
+	 * hand) is replaced by a new file of @mode when it is ours; one that
+	 * others could write is left as it is, for the caller's trust check
+	 * to refuse.
 	 */
 	loose = st.st_mode & 0777 & ~(mode_t)mode;
-	if (loose && !(loose & (S_IWGRP | S_IWOTH)) && st.st_uid == geteuid() &&
-	    fchmod(fd, (mode_t)mode)) {
-		snprintf(err, errlen, "cannot make lock %s private (chmod %04o): %s",
-			 path, mode, strerror(errno));
+	if (loose && !(loose & (S_IWGRP | S_IWOTH)) && st.st_uid == geteuid()) {
 		close(fd);
-		return -EPERM;
+		if (replaced) {
+			snprintf(err, errlen, "lock %s is loose again right after it was replaced: "
+				 "something changes it, remove it", path);
+			return -EPERM;
+		}
+		ret = lock_file_replace(path, mode, err, errlen);
+		if (ret)
+			return ret;
+		replaced = true;
+		goto again;
 	}
 
 	return fd;

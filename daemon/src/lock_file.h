@@ -10,8 +10,9 @@
  * symbolic link, never blocking on a FIFO or device put there, and only a
  * regular file. Whoever may open the file may flock() it, even read-only:
  * @mode must let nobody else read it (0600), and a lock of ours with
- * looser permissions is tightened to @mode. The fd, or -errno with the
- * reason in @err.
+ * looser permissions is replaced by a new file of @mode (renamed over it:
+ * a descriptor opened on the old one no longer counts). The fd, or -errno
+ * with the reason in @err.
  */
 int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen);
 

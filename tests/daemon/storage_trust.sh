@@ -173,6 +173,36 @@ run factory-test $sim --samples 12 --record "$rec" --lock-timeout 5
 check "and then another user cannot hold it: factory-test runs" \
 	eval '[ $rc -eq 0 ] && ! grep -q held "$work/holder"'
 let_go
+# Issue 40, N2: a descriptor nobody opened while the lock was 0644 must not
+# hold the lock once it is private: chmod on the same inode would leave that
+# descriptor working, a new file renamed over the old one does not
+chmod 644 "$rec.lock"
+ino_before=$(stat -c %i "$rec.lock")
+rm -f "$work/holder" "$work/go"
+# shellcheck disable=SC2016
+as_nobody sh -c 'exec 3<"$1"; echo opened; while [ ! -e "$2" ]; do sleep 0.1; done
+	flock -x -n 3 && echo held; exec sleep 120' sh "$rec.lock" "$work/go" >"$work/holder" 2>&1 &
+holder=$!
+for _ in $(seq 300); do
+	grep -q opened "$work/holder" 2>/dev/null && break
+	kill -0 "$holder" 2>/dev/null || break
+	sleep 0.1
+done
+# shellcheck disable=SC2086
+run recalibrate $sim --samples 12 --record "$rec" --lock-timeout 5
+touch "$work/go"
+for _ in $(seq 300); do
+	grep -q held "$work/holder" 2>/dev/null && break
+	kill -0 "$holder" 2>/dev/null || break
+	sleep 0.1
+done
+check "a lock opened by another user while it was 0644: replaced by a new private file" \
+	eval '[ $rc -eq 0 ] && grep -q opened "$work/holder" && [ "$(stat -c %i "$rec.lock")" != "$ino_before" ] && [ "$(stat -c %a "$rec.lock")" = 600 ]'
+# shellcheck disable=SC2086
+run rollback $sim --record "$rec" --lock-timeout 5
+check "and that old descriptor's flock does not stop rollback (it locks an inode nobody uses)" \
+	eval '[ $rc -eq 0 ] && grep -q held "$work/holder"'
+let_go
 
 # Issue 25, point 6: a journal (<record>.previous.swap) is acted on only when
 # it is believed (root's, not writable by others) and a valid record; the
