@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -152,6 +153,16 @@ static void refuses(void **state)
 	snprintf(link, sizeof(link), "%s/link", dir);
 	assert_int_equal(symlink(path, link), 0);
 	assert_int_equal(as9888_magn_load(link, &cal, err, sizeof(err)), -ELOOP);
+	/*
+	 * A FIFO at the path (issue 40, N7): refused at once, not waited on
+	 * for a writer; the alarm ends the test should the load block
+	 */
+	snprintf(path, sizeof(path), "%s/fifo", dir);
+	assert_int_equal(mkfifo(path, 0600), 0);
+	alarm(20);
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EINVAL);
+	alarm(0);
+	assert_non_null(strstr(err, "not a regular file"));
 }
 
 /*
