@@ -68,8 +68,37 @@ int cmd_recalibrate(const struct cli_opts *o)
 }
 
 /*
+ * Through the driver, after the pair was swapped: the rolled-back record
+ * applied, or the swap undone (the pair as it was) when the device takes
+ * none of it. 0 or -1, said on stderr.
+ */
+static int rollback_apply_iio(const struct cli_opts *o, const char *cur_text,
+			      long cur_len, const char *prev_text, long prev_len)
+{
+	char dir[IIO_PATH_MAX], err[SESSION_ERR_LEN];
+
+	if (!iio_find_device(NULL, dir, sizeof(dir)) &&
+	    !iio_restore(o->record_path, dir, false))
+		return 0;
+	if (record_pair_replace(o->record_path, cur_text, (size_t)cur_len,
+				prev_text, (size_t)prev_len, RECORD_MODE, err,
+				sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device, and could not be put back: %s\n",
+			err);
+		return -1;
+	}
+	fprintf(stderr, "as9888-calibd: rollback: the device did not take %s%s; nothing changed\n",
+		o->record_path, SESSION_PREVIOUS_SUFFIX);
+	return -1;
+}
+
+/*
  * current := previous, previous := current, as one crash-safe change
- * (record_pair.h): never losing either.
+ * (record_pair.h): never losing either. On the raw and simulated chips the
+ * previous record is applied first, so a chip it does not belong to leaves
+ * the pair as it was; through the driver the restore reads the record
+ * file, so the pair is swapped first and swapped back when the device
+ * refuses it.
  */
 int cmd_rollback(const struct cli_opts *o)
 {
@@ -77,6 +106,7 @@ int cmd_rollback(const struct cli_opts *o)
 	char cur_text[RECORD_MAX_SIZE], prev_text[RECORD_MAX_SIZE];
 	struct calib_record cur, before;
 	long cur_len, prev_len;
+	bool iio = o->backend == CLI_BACKEND_IIO;
 
 	snprintf(prev, sizeof(prev), "%s%s", o->record_path, SESSION_PREVIOUS_SUFFIX);
 	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
@@ -95,24 +125,20 @@ int cmd_rollback(const struct cli_opts *o)
 			prev);
 		return EXIT_FAILURE;
 	}
+	/* its own message says "nothing applied"; the pair is untouched */
+	if (!iio && session_apply_record(o, &before))
+		return EXIT_FAILURE;
 	if (record_pair_replace(o->record_path, prev_text, (size_t)prev_len,
 				cur_text, (size_t)cur_len, RECORD_MODE, err,
 				sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: rollback: %s\n", err);
+		if (!iio && !session_apply_record(o, &cur))
+			fprintf(stderr, "as9888-calibd: rollback: the chip runs %s again; nothing changed\n",
+				o->record_path);
 		return EXIT_FAILURE;
 	}
-
-	if (o->backend == CLI_BACKEND_IIO) {
-		char dir[IIO_PATH_MAX];
-
-		if (iio_find_device(NULL, dir, sizeof(dir)) ||
-		    iio_restore(o->record_path, dir, false)) {
-			fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device\n");
-			return EXIT_FAILURE;
-		}
-	} else if (session_apply_record(o, &before)) {
+	if (iio && rollback_apply_iio(o, cur_text, cur_len, prev_text, prev_len))
 		return EXIT_FAILURE;
-	}
 	printf("Rolled back: %s holds the calibration from before the last recalibration\n",
 	       o->record_path);
 	return EXIT_SUCCESS;

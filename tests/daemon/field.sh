@@ -54,6 +54,10 @@ check "rollback: the factory record is back, the recalibration kept as previous"
 run rollback $vt --record "$rec" --unit "$shocked"
 check "rollback twice: back to the recalibration" \
 	eval '[ $rc -eq 0 ] && cmp -s "$rec" "$work/recal.rec"'
+# issue 40, N3: a rollback on a chip the records do not belong to leaves the pair as it was
+run rollback $vt --record "$rec" --unit "$(unit otherchip 'eeprom = 9a 71 15 5c 81 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 50\n')"
+check "rollback on another chip: refused, nothing applied, the pair as it was" \
+	eval '[ $rc -eq 1 ] && says "nothing applied" err && cmp -s "$rec" "$work/recal.rec" && cmp -s "$rec.previous" "$work/factory.rec"'
 
 for up in "0 0 1" "0 0 -1" "1 0 0" "-1 0 0" "0 1 0" "0 -1 0"; do
 	factory 'noise = 0.5\n'
