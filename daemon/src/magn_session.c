@@ -108,6 +108,10 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 		snprintf(buf, size, "the samples do not fit one field (residual %.2f uT rms, %u rejected): a disturbance during the session (a magnet or moving metal nearby); run again away from it",
 			 f->residual_ut, f->rejected);
 		break;
+	case MAGCAL_INCONSISTENT:
+		snprintf(buf, size, "the field changed during the session (its strength drifted by %.2f uT, its dip by %.1f deg beyond the noise): a magnet or steel moving slowly near the device; nothing stored, run again away from it",
+			 f->drift_ut, f->dip_drift_deg);
+		break;
 	default:
 		snprintf(buf, size, "the fit failed (%s): run again, turning the device through every direction",
 			 magcal_status_str(f->status));

@@ -24,6 +24,12 @@
  *  5. With a reference field R (config reference_field_ut), after the
  *     verdict: W *= R / F, F = R (docs/DECISIONS.md, "Magnetometer
  *     magnitude: the site's field as a reference").
+ *  6. Consistency in time (before the verdict): the residuals and the dip
+ *     of the samples used, in the order they were kept, must not drift
+ *     (means over DRIFT_WINDOW successive samples against the median,
+ *     beyond the noise between neighbours): docs/DECISIONS.md, "Compass
+ *     v2: the store and the gate".
+ * The store (magcal_add): see store_victim().
  */
 
 #include <errno.h>
@@ -49,17 +55,25 @@
 #define FACE_SPLIT		0.2679491924311228	/* tan(15 deg) */
 #define COVER_BINS		54
 #define DEG_PER_RAD		(180.0 / M_PI)
+/* consistency in time: means over this many successive samples */
+#define DRIFT_WINDOW		12
+#define DRIFT_SIGMAS		4.0
+
+/* the store's cells: cube faces split in 4 x 4 equal-angle cells */
+#define STORE_SPLIT		4
+#define STORE_BINS		(6 * STORE_SPLIT * STORE_SPLIT)
 
 struct sample {
 	double m[3];
 	double g[3];
 	bool has_g;
+	unsigned long long seq;	/* the order samples were kept in */
 };
 
 struct magcal_session {
 	struct magcal_config cfg;
 	unsigned int n;		/* samples kept */
-	unsigned int next;	/* the oldest, to be replaced when full */
+	unsigned long long seq;	/* samples kept so far, ever */
 	struct sample s[MAGCAL_MAX_SAMPLES];
 };
 
@@ -82,6 +96,8 @@ void magcal_config_default(struct magcal_config *cfg)
 	cfg->outlier_ut = 2.0;
 	cfg->max_uncertainty_deg = 0.6;
 	cfg->reference_field_ut = 0;
+	cfg->max_drift_ut = 0.4;
+	cfg->max_dip_drift_deg = 1.0;
 }
 
 static bool config_ok(const struct magcal_config *c)
@@ -91,6 +107,7 @@ static bool config_ok(const struct magcal_config *c)
 	       c->min_separation_ut >= 0 && c->field_min_ut >= 0 &&
 	       c->field_max_ut > c->field_min_ut && c->max_residual_ut > 0 &&
 	       c->outlier_ut > 0 && c->max_uncertainty_deg > 0 &&
+	       c->max_drift_ut > 0 && c->max_dip_drift_deg > 0 &&
 	       (c->reference_field_ut == 0 ||
 		(c->reference_field_ut >= c->field_min_ut &&
 		 c->reference_field_ut <= c->field_max_ut));
@@ -121,7 +138,7 @@ void magcal_free(struct magcal_session *s)
 void magcal_reset(struct magcal_session *s)
 {
 	s->n = 0;
-	s->next = 0;
+	s->seq = 0;
 }
 
 unsigned int magcal_count(const struct magcal_session *s)
@@ -146,6 +163,9 @@ static bool finite3(const double a[3])
 	return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]);
 }
 
+static unsigned int store_victim(const struct magcal_session *s,
+				 const double m[3]);
+
 int magcal_add(struct magcal_session *s, const double m_ut[3],
 	       const double *gravity)
 {
@@ -157,16 +177,15 @@ int magcal_add(struct magcal_session *s, const double m_ut[3],
 	for (i = 0; i < s->n; i++)
 		if (dist3(s->s[i].m, m_ut) < s->cfg.min_separation_ut)
 			return 0;
-	if (s->n < s->cfg.max_samples) {
+	if (s->n < s->cfg.max_samples)
 		dst = &s->s[s->n++];
-	} else {
-		dst = &s->s[s->next];
-		s->next = (s->next + 1) % s->cfg.max_samples;
-	}
+	else
+		dst = &s->s[store_victim(s, m_ut)];
 	memcpy(dst->m, m_ut, sizeof(dst->m));
 	dst->has_g = gravity != NULL;
 	if (gravity)
 		memcpy(dst->g, gravity, sizeof(dst->g));
+	dst->seq = s->seq++;
 	return 1;
 }
 
@@ -300,6 +319,64 @@ static double coverage(const struct magcal_session *s, const bool *use,
 	for (j = 0; j < COVER_BINS; j++)
 		cnt += hit[j];
 	return (double)cnt / COVER_BINS;
+}
+
+/* The store's cell (0..STORE_BINS-1) of a direction: cube face, then cells */
+static int store_bin(const double v[3])
+{
+	double a[3] = { fabs(v[0]), fabs(v[1]), fabs(v[2]) };
+	int face = a[0] >= a[1] && a[0] >= a[2] ? 0 : a[1] >= a[2] ? 1 : 2;
+	/* equal angles: atan of the face coordinate, -pi/4..pi/4 */
+	double u = atan(v[(face + 1) % 3] / a[face]) / M_PI_2 + 0.5;
+	double w = atan(v[(face + 2) % 3] / a[face]) / M_PI_2 + 0.5;
+	int iu = (int)fmin(STORE_SPLIT - 1, fmax(0, u * STORE_SPLIT));
+	int iw = (int)fmin(STORE_SPLIT - 1, fmax(0, w * STORE_SPLIT));
+
+	face = 2 * face + (v[face] < 0);
+	return (face * STORE_SPLIT + iu) * STORE_SPLIT + iw;
+}
+
+/* The store's cell of reading @m seen from the centre @c */
+static int store_bin_of(const double m[3], const double c[3])
+{
+	double d[3] = { m[0] - c[0], m[1] - c[1], m[2] - c[2] };
+
+	return norm3(d) > 0 ? store_bin(d) : 0;
+}
+
+/*
+ * The sample a new reading @m replaces in a full store: the oldest of the
+ * most crowded cell of directions (the field's, in the sensor frame, seen
+ * from the centre of the samples kept), the new reading counted in its
+ * own cell, which wins a tie. A direction seen once stays kept however
+ * long the user then turns elsewhere; where the samples crowd, the newest
+ * replace the oldest.
+ */
+static unsigned int store_victim(const struct magcal_session *s,
+				 const double m[3])
+{
+	unsigned int count[STORE_BINS] = { 0 }, oldest[STORE_BINS] = { 0 };
+	double c[3] = { 0 }, r;
+	int own, best = -1, b;
+	unsigned int i, k;
+
+	if (!sphere_fit(s, NULL, c, &r))
+		memcpy(c, s->s[0].m, sizeof(c));
+	for (i = 0; i < s->n; i++) {
+		b = store_bin_of(s->s[i].m, c);
+		if (!count[b]++ || s->s[i].seq < s->s[oldest[b]].seq)
+			oldest[b] = i;
+	}
+	own = store_bin_of(m, c);
+	for (b = 0; b < STORE_BINS; b++) {
+		if (!count[b])
+			continue;
+		k = count[b] + (b == own);
+		if (best < 0 || k > count[best] + (best == own) ||
+		    (k == count[best] + (best == own) && b == own))
+			best = b;
+	}
+	return oldest[best];
 }
 
 double magcal_progress(const struct magcal_session *s)
@@ -685,6 +762,92 @@ static double uncertainty_deg(const struct magcal_session *s, const bool *use,
 	return hypot(eb, el) * DEG_PER_RAD;
 }
 
+/* ---- consistency in time ---- */
+
+/* A sample's index and what is judged of it, in the order they were kept */
+struct timed {
+	unsigned long long seq;
+	double v;
+};
+
+static int cmp_timed(const void *a, const void *b)
+{
+	const struct timed *x = a, *y = b;
+
+	return x->seq < y->seq ? -1 : x->seq > y->seq;
+}
+
+/*
+ * Slow structure of @v (in the order the samples were kept): the largest
+ * deviation of a mean over DRIFT_WINDOW successive values from the median
+ * of all, less what white noise of the size seen between neighbours gives
+ * such a mean (DRIFT_SIGMAS of its standard deviation). A field that
+ * changed for a while (a magnet passing slowly) moves the means of the
+ * samples of that while together; noise averages out.
+ */
+static double drift(struct timed *t, unsigned int n)
+{
+	double d[MAGCAL_MAX_SAMPLES], med, sigma, sum = 0, worst = 0;
+	unsigned int i;
+
+	if (n < 2 * DRIFT_WINDOW)
+		return 0;
+	qsort(t, n, sizeof(t[0]), cmp_timed);
+	for (i = 0; i + 1 < n; i++)
+		d[i] = fabs(t[i + 1].v - t[i].v);
+	qsort(d, n - 1, sizeof(d[0]), cmp_double);
+	/* |a - b| of two N(0, s): median 0.6745 sqrt(2) s */
+	sigma = d[(n - 1) / 2] / (0.6745 * M_SQRT2);
+	for (i = 0; i < n; i++)
+		d[i] = t[i].v;
+	qsort(d, n, sizeof(d[0]), cmp_double);
+	med = d[n / 2];
+	for (i = 0; i < n; i++) {
+		sum += t[i].v - med;
+		if (i >= DRIFT_WINDOW)
+			sum -= t[i - DRIFT_WINDOW].v - med;
+		if (i + 1 >= DRIFT_WINDOW)
+			worst = fmax(worst, fabs(sum) / DRIFT_WINDOW);
+	}
+	return fmax(0, worst - DRIFT_SIGMAS * sigma / sqrt(DRIFT_WINDOW));
+}
+
+/* The angle (deg) of the calibrated field @c below the horizon of up @g */
+static double dip_of(const double c[3], const double g[3])
+{
+	double cosang = (c[0] * g[0] + c[1] * g[1] + c[2] * g[2]) /
+			(norm3(c) * norm3(g));
+
+	return asin(fmax(-1, fmin(1, -cosang))) * DEG_PER_RAD;
+}
+
+/*
+ * The fit's consistency in time: the slow structure of the residuals
+ * (the field's magnitude) and of the dip (its angle to gravity) along the
+ * samples used. Both are constant while only the device turns.
+ */
+static void consistency(const struct magcal_session *s, const bool *use,
+			struct magcal_result *r)
+{
+	struct timed e[MAGCAL_MAX_SAMPLES], dip[MAGCAL_MAX_SAMPLES];
+	unsigned int i, ne = 0, nd = 0;
+	double c[3];
+
+	for (i = 0; i < s->n; i++) {
+		if (!use[i])
+			continue;
+		e[ne].seq = s->s[i].seq;
+		e[ne++].v = residual_ut(s, i, r);
+		magcal_apply(r, s->s[i].m, c);
+		if (s->s[i].has_g && norm3(s->s[i].g) > 0 && norm3(c) > 0) {
+			dip[nd].seq = s->s[i].seq;
+			dip[nd++].v = dip_of(c, s->s[i].g);
+		}
+	}
+	r->drift_ut = drift(e, ne);
+	r->dip_drift_deg = drift(dip, nd);
+}
+
 static void quality(const struct magcal_session *s, const bool *use,
 		    struct magcal_result *r)
 {
@@ -704,12 +867,7 @@ static void quality(const struct magcal_session *s, const bool *use,
 		sq += e * e;
 		magcal_apply(r, s->s[i].m, c);
 		if (s->s[i].has_g && norm3(s->s[i].g) > 0 && norm3(c) > 0) {
-			double cosang = (c[0] * s->s[i].g[0] +
-					 c[1] * s->s[i].g[1] +
-					 c[2] * s->s[i].g[2]) /
-					(norm3(c) * norm3(s->s[i].g));
-
-			dip += asin(fmax(-1, fmin(1, -cosang))) * DEG_PER_RAD;
+			dip += dip_of(c, s->s[i].g);
 			ndip++;
 		}
 	}
@@ -729,6 +887,9 @@ static enum magcal_status verdict(const struct magcal_config *cfg,
 		return MAGCAL_FIELD_IMPLAUSIBLE;
 	if (r->residual_ut > cfg->max_residual_ut)
 		return MAGCAL_RESIDUAL_HIGH;
+	if (r->drift_ut > cfg->max_drift_ut ||
+	    r->dip_drift_deg > cfg->max_dip_drift_deg)
+		return MAGCAL_INCONSISTENT;
 	return MAGCAL_OK;
 }
 
@@ -769,6 +930,7 @@ int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 		return 0;
 	}
 	quality(s, use, r);
+	consistency(s, use, r);
 	r->uncertainty_deg = uncertainty_deg(s, use, &f, r);
 	r->status = verdict(&s->cfg, r);
 	if (s->cfg.reference_field_ut > 0 && r->fitted_field_ut > 0)
@@ -789,6 +951,8 @@ const char *magcal_status_str(enum magcal_status st)
 		return "residual too high";
 	case MAGCAL_SINGULAR:
 		return "fit did not converge";
+	case MAGCAL_INCONSISTENT:
+		return "field changed during the session";
 	}
 	return "unknown";
 }

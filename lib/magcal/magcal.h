@@ -10,12 +10,18 @@
  * every sample, F the field's magnitude. The calibrated field is then
  * c = W (m - b).
  *
- * A session keeps a bounded set of samples (at most MAGCAL_MAX_SAMPLES,
- * the most recent distinct ones), reports how much of the sphere of
- * directions they cover, and solves on request: a robust fit (outliers
- * such as a passing magnet are found and left out), regularised toward a
- * sphere where the motion left a direction unobserved, with quality
- * figures and a status.
+ * A session keeps a bounded set of samples (at most MAGCAL_MAX_SAMPLES
+ * distinct ones) that keeps coverage: the samples are binned by the
+ * direction of the field in the sensor frame, and a full store replaces
+ * the oldest sample of the most crowded cell, so a direction seen once
+ * stays however long the user then turns elsewhere. It reports how much
+ * of the sphere of directions they cover, and solves on request: a robust
+ * fit (outliers such as a strong passing magnet are found and left out),
+ * regularised toward a sphere where the motion left a direction
+ * unobserved, with quality figures and a status. A fit must also be
+ * consistent in time: a field whose magnitude or dip drifts along the
+ * samples (a weak magnet passing slowly, which the fit would absorb into
+ * a wrong hard iron) is refused (MAGCAL_INCONSISTENT).
  *
  * The scale of W is not observable (a sphere of radius kF reads the same
  * as one of F): W is normalised to det(W) = 1, so an isotropic gain of the
@@ -50,6 +56,11 @@
  *				disturbance through the session, a changing
  *				hard iron): rms above config max_residual_ut
  * @MAGCAL_SINGULAR:		the fit did not converge (degenerate data)
+ * @MAGCAL_INCONSISTENT:	the field changed along the session: the
+ *				residuals (its magnitude) or the dip (its
+ *				angle to gravity) drift in time beyond config
+ *				max_drift_ut / max_dip_drift_deg (a magnet
+ *				passing slowly, which a fit can absorb)
  */
 enum magcal_status {
 	MAGCAL_OK = 0,
@@ -57,6 +68,7 @@ enum magcal_status {
 	MAGCAL_FIELD_IMPLAUSIBLE,
 	MAGCAL_RESIDUAL_HIGH,
 	MAGCAL_SINGULAR,
+	MAGCAL_INCONSISTENT,
 };
 
 /**
@@ -78,6 +90,10 @@ enum magcal_status {
  *			magcal_solve() scales W (after every check has
  *			judged the fit as made) so that the calibrated
  *			field's magnitude is this reference
+ * @max_drift_ut:	slow drift of the residuals (magcal_result
+ *			drift_ut) above this: MAGCAL_INCONSISTENT
+ * @max_dip_drift_deg:	slow drift of the dip (magcal_result
+ *			dip_drift_deg) above this: MAGCAL_INCONSISTENT
  */
 struct magcal_config {
 	unsigned int max_samples;
@@ -90,6 +106,8 @@ struct magcal_config {
 	double outlier_ut;
 	double max_uncertainty_deg;
 	double reference_field_ut;
+	double max_drift_ut;
+	double max_dip_drift_deg;
 };
 
 /**
@@ -119,6 +137,11 @@ struct magcal_config {
  *		the horizon), when gravity was given with the samples used;
  *		else 0
  * @has_dip:	@dip_deg is valid
+ * @drift_ut:	the residuals' slow structure in time, uT: the largest
+ *		mean over 12 successive samples used (in the order they were
+ *		kept) away from their median, beyond what the noise seen
+ *		between neighbours explains; 0 for a field that stayed put
+ * @dip_drift_deg: the same of the dip, degrees (0 without gravity)
  */
 struct magcal_result {
 	enum magcal_status status;
@@ -134,6 +157,8 @@ struct magcal_result {
 	double uncertainty_deg;
 	double dip_deg;
 	bool has_dip;
+	double drift_ut;
+	double dip_drift_deg;
 };
 
 struct magcal_session;

@@ -420,11 +420,8 @@ static void test_add(void **state)
 		m[1] += 5;
 		assert_int_equal(magcal_add(s, m, NULL), 1);
 	}
+	/* a full store replaces one it keeps (test_store: which one) */
 	assert_int_equal(magcal_count(s), 5);
-	/* the first sample is gone: its neighbour is kept again */
-	m[0] = 11;
-	m[1] = 20;
-	assert_int_equal(magcal_add(s, m, NULL), 1);
 	magcal_free(s);
 	cfg.max_samples = MAGCAL_MAX_SAMPLES + 1;
 	assert_null(magcal_new(&cfg));
@@ -432,6 +429,134 @@ static void test_add(void **state)
 	cfg.field_max_ut = cfg.field_min_ut;
 	assert_null(magcal_new(&cfg));
 	assert_int_equal(magcal_solve(NULL, NULL), -EINVAL);
+}
+
+/*
+ * The store keeps coverage: a session that saw every direction early and
+ * then only a cap of 30 degrees for ten times as long still fits the
+ * whole sphere (a store of the most recent samples would hold the cap
+ * alone: not enough coverage)
+ */
+static void test_store(void **state)
+{
+	struct board b = board_a;
+	struct magcal_result r;
+	struct magcal_session *s;
+	double d[3], m[3];
+	int i;
+
+	rng_state = 11;
+	b.noise = 0.3;
+	s = feed(&b, 300, 180, 48);
+	for (i = 0; i < 3000; i++) {
+		direction(30, d);
+		reading(&b, d, 48, m);
+		assert_true(magcal_add(s, m, NULL) >= 0);
+	}
+	assert_int_equal(magcal_count(s), MAGCAL_MAX_SAMPLES);
+	assert_true(magcal_progress(s) > 0.9);
+	assert_int_equal(magcal_solve(s, &r), 0);
+	assert_int_equal(r.status, MAGCAL_OK);
+	assert_true(r.coverage > 0.9);
+	check_against_truth(&b, &r, 48, 0.02, 1.0);
+	/* and the cap's cells hold its newest samples, not its first ones */
+	for (i = 0; i < 3; i++)
+		assert_true(fabs(r.bias[i] - b.h[i]) < 0.5);
+	magcal_free(s);
+}
+
+/* A random rotation (sensor to world), uniform */
+static void rotation(double r[3][3])
+{
+	double q[4], n = 0;
+	int i;
+
+	do {
+		for (i = 0, n = 0; i < 4; i++) {
+			q[i] = 2 * uniform() - 1;
+			n += q[i] * q[i];
+		}
+	} while (n > 1 || n < 0.01);
+	for (i = 0; i < 4; i++)
+		q[i] /= sqrt(n);
+	r[0][0] = 1 - 2 * (q[2] * q[2] + q[3] * q[3]);
+	r[0][1] = 2 * (q[1] * q[2] - q[0] * q[3]);
+	r[0][2] = 2 * (q[1] * q[3] + q[0] * q[2]);
+	r[1][0] = 2 * (q[1] * q[2] + q[0] * q[3]);
+	r[1][1] = 1 - 2 * (q[1] * q[1] + q[3] * q[3]);
+	r[1][2] = 2 * (q[2] * q[3] - q[0] * q[1]);
+	r[2][0] = 2 * (q[1] * q[3] - q[0] * q[2]);
+	r[2][1] = 2 * (q[2] * q[3] + q[0] * q[1]);
+	r[2][2] = 1 - 2 * (q[1] * q[1] + q[2] * q[2]);
+}
+
+/*
+ * A session of 300 orientations in a world with a field of 48 uT at 60
+ * degrees of dip, which a slow magnet changes between samples 100 and 200
+ * (half-sine): @bump_ut along the field (its magnitude), or the field
+ * turned by @turn_deg in its vertical plane (its dip only)
+ */
+static struct magcal_result session_in_time(double bump_ut, double turn_deg)
+{
+	struct board b = board_a;
+	struct magcal_session *s = magcal_new(NULL);
+	struct magcal_result res;
+	double r[3][3], w[3], f[3], up[3], m[3], k, dip;
+	int n, i;
+
+	assert_non_null(s);
+	b.noise = 0.3;
+	for (n = 0; n < 300; n++) {
+		k = n >= 100 && n < 200 ? sin(M_PI * (n - 99) / 101.0) : 0;
+		dip = (60 + turn_deg * k) * DEG;
+		w[0] = 0;
+		w[1] = (48 + bump_ut * k) * cos(dip);
+		w[2] = -(48 + bump_ut * k) * sin(dip);
+		rotation(r);
+		for (i = 0; i < 3; i++) {
+			/* sensor = R^T world */
+			f[i] = r[0][i] * w[0] + r[1][i] * w[1] + r[2][i] * w[2];
+			up[i] = r[2][i];
+		}
+		k = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+		for (i = 0; i < 3; i++)
+			f[i] /= k;
+		reading(&b, f, k, m);
+		assert_true(magcal_add(s, m, up) >= 0);
+	}
+	assert_int_equal(magcal_solve(s, &res), 0);
+	magcal_free(s);
+	return res;
+}
+
+/*
+ * The gate: a field that changed slowly during the session is refused,
+ * by its magnitude (the residuals' slow structure) or by its dip; the
+ * same session without the change passes
+ */
+static void test_gate(void **state)
+{
+	struct magcal_result r;
+
+	rng_state = 12;
+	r = session_in_time(0, 0);
+	assert_int_equal(r.status, MAGCAL_OK);
+	assert_true(r.drift_ut < 0.1 && r.dip_drift_deg < 0.3);
+	assert_true(r.has_dip && fabs(r.dip_deg - 60) < 0.5);
+
+	/* 1.5 uT: small enough for the residual (rms under 1.5 uT) */
+	r = session_in_time(1.5, 0);
+	assert_true(r.residual_ut < 1.5);
+	assert_int_equal(r.status, MAGCAL_INCONSISTENT);
+	assert_true(r.drift_ut > 0.4);
+
+	/* the dip turned by 4 degrees: the magnitude stays */
+	r = session_in_time(0, 4);
+	assert_true(r.residual_ut < 1.5);
+	assert_int_equal(r.status, MAGCAL_INCONSISTENT);
+	assert_true(r.dip_drift_deg > 1.0);
+	assert_string_equal(magcal_status_str(r.status),
+			    "field changed during the session");
 }
 
 /* Degenerate input: a status, never a crash or a NaN called ok */
@@ -542,6 +667,8 @@ int main(void)
 		cmocka_unit_test(test_reference),
 		cmocka_unit_test(test_progress),
 		cmocka_unit_test(test_add),
+		cmocka_unit_test(test_store),
+		cmocka_unit_test(test_gate),
 		cmocka_unit_test(test_degenerate),
 		cmocka_unit_test(test_split_apply),
 		cmocka_unit_test(test_heading),
