@@ -12,6 +12,8 @@
 #   iio_scan    the IIO buffer layout (scan_elements _index/_type) and samples
 #   iio_value   the driver's attribute values: self-test verdict and
 #               readings, integers
+#   hal_text    the sensors HAL's configuration file, mount matrix, rates
+#               and numbers (hal/)
 # Usage: scripts/fuzz.sh [SECONDS [TARGET...]]: SECONDS (default 60) in
 # all, shared equally by the targets (default: all of them).
 # Seed corpora live in tests/fuzz/corpus/TARGET; new inputs found go to a
@@ -23,7 +25,7 @@ set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-60}
 shift || true
-all=(record record_crc unit request uevent iio_scan iio_value)
+all=(record record_crc unit request uevent iio_scan iio_value hal_text)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
 per=$((seconds / ${#targets[@]}))
@@ -44,7 +46,8 @@ fi
 [ -e "$top/tools/include/linux/kconfig.h" ] &&
 	flags+=(-include "$top/tools/include/linux/kconfig.h")
 flags+=(-I"$top/tools/include" -I"$top/drivers/iio/imu/as9888"
-	-I"$top/daemon/src" -I"$top/tests/model" -I"$top/tests/fuzz")
+	-I"$top/daemon/src" -I"$top/tests/model" -I"$top/tests/fuzz"
+	-I"$top/hal/include" -I"$top/hal/src")
 src=$top/daemon/src
 
 # the sources each target is built from, besides tests/fuzz/TARGET_fuzz.c
@@ -56,6 +59,7 @@ sources() {
 	uevent) echo "$src/uevent.c $src/uevent_filter.c" ;;
 	iio_scan) echo "$src/iio_scan.c" ;;
 	iio_value) echo "$src/iio_value.c ${calib[*]}" ;;
+	hal_text) echo "$top/hal/src/hal_config.c $top/hal/src/hal_layout.c $top/hal/src/hal_attr.c $top/hal/src/hal_stream.c $src/iio_scan.c" ;;
 	*) echo "fuzz: unknown target $1 (${all[*]})" >&2; return 1 ;;
 	esac
 }
