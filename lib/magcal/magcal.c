@@ -97,7 +97,7 @@ void magcal_config_default(struct magcal_config *cfg)
 	cfg->max_uncertainty_deg = 0.6;
 	cfg->reference_field_ut = 0;
 	cfg->max_drift_ut = 0.4;
-	cfg->max_dip_drift_deg = 1.0;
+	cfg->max_dip_drift_deg = 0.6;
 }
 
 static bool config_ok(const struct magcal_config *c)
@@ -779,16 +779,18 @@ static int cmp_timed(const void *a, const void *b)
 
 /*
  * Slow structure of @v (in the order the samples were kept): the largest
- * deviation of a mean over DRIFT_WINDOW successive values from the median
- * of all, less what white noise of the size seen between neighbours gives
- * such a mean (DRIFT_SIGMAS of its standard deviation). A field that
+ * deviation of a mean over DRIFT_WINDOW (and 3 x DRIFT_WINDOW: a slower,
+ * smaller drift) successive values from the median of all, less what
+ * white noise of the size seen between neighbours gives such a mean
+ * (DRIFT_SIGMAS of its standard deviation). A field that
  * changed for a while (a magnet passing slowly) moves the means of the
  * samples of that while together; noise averages out.
  */
 static double drift(struct timed *t, unsigned int n)
 {
-	double d[MAGCAL_MAX_SAMPLES], med, sigma, sum = 0, worst = 0;
-	unsigned int i;
+	static const unsigned int windows[] = { DRIFT_WINDOW, 3 * DRIFT_WINDOW };
+	double d[MAGCAL_MAX_SAMPLES], med, sigma, sum, worst = 0, dev;
+	unsigned int i, k, w;
 
 	if (n < 2 * DRIFT_WINDOW)
 		return 0;
@@ -802,14 +804,21 @@ static double drift(struct timed *t, unsigned int n)
 		d[i] = t[i].v;
 	qsort(d, n, sizeof(d[0]), cmp_double);
 	med = d[n / 2];
-	for (i = 0; i < n; i++) {
-		sum += t[i].v - med;
-		if (i >= DRIFT_WINDOW)
-			sum -= t[i - DRIFT_WINDOW].v - med;
-		if (i + 1 >= DRIFT_WINDOW)
-			worst = fmax(worst, fabs(sum) / DRIFT_WINDOW);
+	for (k = 0; k < sizeof(windows) / sizeof(windows[0]); k++) {
+		w = windows[k];
+		if (2 * w > n)
+			break;
+		for (i = 0, sum = 0; i < n; i++) {
+			sum += t[i].v - med;
+			if (i >= w)
+				sum -= t[i - w].v - med;
+			if (i + 1 < w)
+				continue;
+			dev = fabs(sum) / w - DRIFT_SIGMAS * sigma / sqrt(w);
+			worst = fmax(worst, dev);
+		}
 	}
-	return fmax(0, worst - DRIFT_SIGMAS * sigma / sqrt(DRIFT_WINDOW));
+	return worst;
 }
 
 /* The angle (deg) of the calibrated field @c below the horizon of up @g */
