@@ -146,7 +146,7 @@ struct saved_attr {
  * @calibbias:	in_accel_{x,y,z}_calibbias, open (their @saved entries')
  * @enable:	buffer/enable, open from step 1-4 on
  * @capture_fd:	the character device while the test's capture runs, else -1
- * @int1_seen:	the data-ready trigger has delivered samples (D11's INT1)
+ * @int1_seen:	D11's INT1 check is made (at the first level run)
  * @comp:	what the driver compensates the samples with: the EEPROM
  *		and the calibration the last DAC write read back
  */
@@ -860,6 +860,34 @@ static int collect_once(struct ftest_ctx *x, uint32_t n, const char *step,
 	return ret;
 }
 
+#define INT1_LIMITS "the data-ready trigger fires on INT1"
+
+/*
+ * D11's INT1 check, made once, at the first level run: the pin rises when
+ * the data-ready trigger, which only INT1 fires, delivers the run's @n
+ * samples (@delivered); it fails when the trigger went silent before
+ * (@got of @n, then none within the stall time; a buffer another program
+ * turned off is no verdict on the pin and is judged on its own)
+ */
+static void iio_judge_int1(struct ftest_ctx *x, const char *step,
+			   bool delivered, uint32_t got, uint32_t n)
+{
+	struct iio_test_dev *d = x->dev;
+	char id[JUDGMENT_ID_LEN];
+
+	if (d->int1_seen)
+		return;
+	d->int1_seen = true;
+	snprintf(id, sizeof(id), "%s.int1", step);
+	if (delivered)
+		ftest_judge(x, id, "INT1 pin check (D11)", true, INT1_LIMITS,
+			    "%u of %u samples from %s", got, n, d->trigger);
+	else
+		ftest_judge(x, id, "INT1 pin check (D11)", false, INT1_LIMITS,
+			    "%u of %u samples from %s, then none for %u ms",
+			    got, n, d->trigger, IIO_SAMPLE_STALL_MS);
+}
+
 static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 			     struct level_run *r)
 {
@@ -902,6 +930,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 		return ret;
 	}
 	if (ret == -ETIMEDOUT) {
+		iio_judge_int1(x, step, false, r->n, n);
 		ftest_judge(x, id, "samples delivered (INT1, ST1, EMPT)", false,
 			    "N samples from the data-ready trigger",
 			    "%u of %u, then none for %u ms: INT1 silent or samples failing the driver's checks (see the kernel log)",
@@ -911,13 +940,7 @@ static int iio_level_collect(struct ftest_ctx *x, uint32_t n, const char *step,
 	}
 	if (ret)
 		return ftest_io_failed(x, step, d->chardev, ret);
-	snprintf(id, sizeof(id), "%s.int1", step);
-	/* all n samples came through the trigger, which INT1 fires */
-	if (!d->int1_seen)
-		ftest_judge(x, id, "INT1 pin check (D11)", r->n == n,
-			    "the data-ready trigger fires on INT1",
-			    "%u samples from %s", r->n, d->trigger);
-	d->int1_seen = true;
+	iio_judge_int1(x, step, true, r->n, n);
 
 	return 0;
 }
@@ -1019,7 +1042,7 @@ int ftest_run_iio(const char *dir, const struct ftest_opts *o,
 	d->enable = IIO_ATTR_CLOSED;
 	d->capture_fd = -1;
 	snprintf(d->dir, sizeof(d->dir), "%s", dir);
-	snprintf(d->chardev, sizeof(d->chardev), "/dev/%s", base + 1);
+	snprintf(d->chardev, sizeof(d->chardev), "%s/%s", iio_dev_root(), base + 1);
 	/* scan_elements/ on every kernel; buffer0/ holds the same files */
 	snprintf(probe, sizeof(probe), "%s/scan_elements", dir);
 	d->scan_dir = access(probe, F_OK) ? "buffer0" : "scan_elements";

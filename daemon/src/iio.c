@@ -37,6 +37,11 @@ const char *iio_debugfs_root(void)
 	return root_from_env("AS9888_DEBUGFS", "/sys/kernel/debug");
 }
 
+const char *iio_dev_root(void)
+{
+	return root_from_env("AS9888_DEVDIR", "/dev");
+}
+
 int iio_dir_open(const char *dir)
 {
 	int fd = open(dir, O_PATH | O_DIRECTORY | O_CLOEXEC);

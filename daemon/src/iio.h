@@ -51,6 +51,9 @@ const char *iio_sysfs_root(void);
 /* The debugfs root: $AS9888_DEBUGFS, default /sys/kernel/debug */
 const char *iio_debugfs_root(void);
 
+/* Where the devices' nodes are: $AS9888_DEVDIR, default /dev */
+const char *iio_dev_root(void);
+
 /*
  * The sysfs directory of an AS9888 accelerometer IIO device
  * (IIO_ACCEL_NAME): the one at or below /sys@devpath, or with @devpath

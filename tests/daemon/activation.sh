@@ -19,6 +19,7 @@ work=$(mktemp -d /tmp/as9888-activation-XXXXXX)
 export ASAN_OPTIONS=detect_leaks=1
 # shellcheck source=../lib/tap.sh
 . "$(dirname "$0")/../lib/tap.sh"
+tap_plan 10
 TAP_SHOW="$work/err"
 mkdir -p "$work/sys"
 export AS9888_SYSFS=$work/sys

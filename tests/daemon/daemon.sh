@@ -28,6 +28,7 @@ cleanup() { [ -n "$pid" ] && kill "$pid" 2>/dev/null; rm -rf "$work"; }
 trap cleanup EXIT
 # shellcheck source=../lib/tap.sh
 . "$(dirname "$0")/../lib/tap.sh"
+tap_plan 15
 TAP_SHOW="$work/log"
 
 # uevent MESSAGE-FIELDS...: multicast a kernel-style uevent (group 1)
@@ -138,27 +139,30 @@ r2=$!
 wait $r1 $r2
 check "two recalibrations at once both complete" \
 	eval 'grep -q "^exit status 0" "$work/r1" && grep -q "^exit status 0" "$work/r2"'
+# both in the log, each start after the other's end (no log: no pass)
 check "and ran one after the other" python3 - "$work/log" <<'PY'
 import sys
 busy = False
+starts = ends = 0
 for line in open(sys.argv[1]):
     if "recalibrate requested" in line:
-        assert not busy; busy = True
+        assert not busy, "a second recalibration started before the first's end"
+        busy = True
+        starts += 1
     elif "recalibrate done" in line:
-        assert busy; busy = False
+        assert busy, "a recalibration ended that had not started"
+        busy = False
+        ends += 1
+assert starts == 2 and ends == 2, "%d starts and %d ends logged, not 2 and 2" % (starts, ends)
 PY
 out=$("$calibd" request rollback --socket "$sock")
 check "request rollback" grep -q "^exit status 0" <<<"$out"
 
-# idle: no CPU time, no wake-ups
-stat() { awk '{ print $14 + $15 }' "/proc/$pid/stat"; }
-switches() { awk '/^voluntary_ctxt_switches/ { print $2 }' "/proc/$pid/status"; }
-c0=$(stat); w0=$(switches)
-sleep 3
-c1=$(stat); w1=$(switches)
-rss=$(awk '/^VmRSS/ { print $2 }' "/proc/$pid/status")
-echo "# idle for 3 s: $((c1 - c0)) CPU ticks, $((w1 - w0)) wake-ups, RSS ${rss} kB"
-check "idle: no CPU time and no wake-ups" test $((c1 - c0)) -eq 0 -a $((w1 - w0)) -eq 0
+# idle: no CPU time, no wake-ups (of a daemon that is still running)
+idle=$(proc_idle "$pid" 3)
+rss=$(awk '/^VmRSS/ { print $2 }' "/proc/$pid/status" 2>/dev/null)
+echo "# idle for 3 s: ${idle% *} CPU ticks, ${idle#* } wake-ups, RSS ${rss} kB"
+check "idle: no CPU time and no wake-ups" test "$idle" = "0 0"
 
 kill -TERM "$pid"
 wait "$pid"; rc=$?

@@ -13,6 +13,7 @@ trap 'rm -rf "$work"' EXIT
 export ASAN_OPTIONS=detect_leaks=1
 # shellcheck source=../lib/tap.sh
 . "$(dirname "$0")/../lib/tap.sh"
+tap_plan 23
 TAP_SHOW="$work/out $work/err"
 rec=$work/state/calibration
 vt="--sim-clock virtual"
@@ -75,6 +76,15 @@ check "recalibrate while the device moves: refused in plain words, record kept" 
 run recalibrate $vt --record "$rec" --unit "$(unit tilted 'up = 0.259 0 0.966\nnoise = 0.5\n')"
 check "recalibrate on a 15 degree slope: not flat, record kept" \
 	eval '[ $rc -eq 1 ] && says "not flat" out && cmp -s "$rec" "$work/factory.rec"'
+# the flat limit (tilt <= 10 degrees) from both sides: 9.5 passes, 10.5 not
+run recalibrate $vt --record "$rec" --unit "$(unit tilt95 'up = 0.1650 0 0.9863\nnoise = 0.5\n')"
+check "recalibrate tilted 9.5 degrees: flat enough, pass" \
+	eval '[ $rc -eq 0 ] && says "tilt about 9.[3-7] degrees" out'
+cp "$work/factory.rec" "$rec"
+rm -f "$rec.previous"
+run recalibrate $vt --record "$rec" --unit "$(unit tilt105 'up = 0.1822 0 0.9833\nnoise = 0.5\n')"
+check "recalibrate tilted 10.5 degrees: not flat, record kept" \
+	eval '[ $rc -eq 1 ] && says "not flat (tilted about 10.[3-7] degrees)" out && cmp -s "$rec" "$work/factory.rec"'
 run recalibrate $vt --record "$rec" --unit "$(unit other 'eeprom = 9a 71 15 5c 81 85 7b 1c 63 a2 38 e6 9c 0d 8f 8c 04 65 c3 88 50\n')"
 check "recalibrate another chip: refused, record kept" \
 	eval '[ $rc -eq 1 ] && says "chip matches the calibration record" out && cmp -s "$rec" "$work/factory.rec"'

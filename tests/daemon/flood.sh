@@ -36,6 +36,7 @@ chmod 755 "$work"
 export ASAN_OPTIONS=detect_leaks=1
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
+tap_plan 8
 TAP_SHOW="$work/log"
 mkdir -p "$work/sys"
 export AS9888_SYSFS=$work/sys

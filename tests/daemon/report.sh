@@ -23,6 +23,7 @@ trap 'rm -rf "$work"' EXIT
 export ASAN_OPTIONS=detect_leaks=1
 # shellcheck source=../lib/tap.sh
 . "$(dirname "$0")/../lib/tap.sh"
+tap_plan 22
 TAP_SHOW="$work/check"
 
 vt="--backend sim --sim-clock virtual"

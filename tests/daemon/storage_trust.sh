@@ -22,6 +22,7 @@ chmod 755 "$work"
 export ASAN_OPTIONS=detect_leaks=1
 # shellcheck source=../lib/tap.sh
 . "$(dirname "$0")/../lib/tap.sh"
+tap_plan 24
 TAP_SHOW="$work/err"
 
 state=$work/state

@@ -36,6 +36,7 @@ cleanup() {
 trap cleanup EXIT
 # shellcheck source=../lib/tap.sh
 . "$(dirname "$0")/../lib/tap.sh"
+tap_plan 6
 TAP_SHOW="$work/log"
 
 # this namespace's sysfs: its /class/net/lo is our loopback device

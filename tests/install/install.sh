@@ -18,6 +18,7 @@ work=$(mktemp -d /tmp/as9888-install-XXXXXX)
 trap 'rm -rf "$work"' EXIT
 # shellcheck source=../lib/tap.sh
 . "$src/tests/lib/tap.sh"
+tap_plan 17
 TAP_SHOW="$work/log"
 
 expected_files() {	# PREFIX
