@@ -239,6 +239,9 @@ int main(int argc, char **argv)
 	unsigned int refused = 0, wrong = 0, missed = 0;
 	double max_learn = 0, head_sq = 0, head_rms_max = 0, head_worst = 0;
 	double mag_rms_max = 0, disturbed_worst = 0;
+	/* per speed: runs, learned, learned within the target, longest */
+	unsigned int sp_runs[8] = { 0 }, sp_learned[8] = { 0 }, sp_fast[8] = { 0 };
+	double sp_longest[8] = { 0 };
 	struct run r;
 
 	if (argc > 2 || (argc == 2 && !full)) {
@@ -259,6 +262,13 @@ int main(int argc, char **argv)
 				run_one(b, &earths[j], speeds[k], NULL, k * 16 + j,
 					&r);
 				clean++;
+				sp_runs[k]++;
+				sp_learned[k] += r.stored;
+				sp_fast[k] += r.stored &&
+					      r.learn_s <= TARGET_LEARN_S;
+				if (r.stored)
+					sp_longest[k] = fmax(sp_longest[k],
+							     r.learn_s);
 				ok = r.stored && r.learn_s <= TARGET_LEARN_S &&
 				     r.sc.head_rms <= TARGET_HEAD_RMS &&
 				     r.sc.head_worst <= TARGET_HEAD_WORST &&
@@ -302,6 +312,10 @@ int main(int argc, char **argv)
 	       learned ? sqrt(head_sq / learned) : 0, head_rms_max,
 	       TARGET_HEAD_RMS, head_worst, TARGET_HEAD_WORST, mag_rms_max,
 	       TARGET_MAG_RMS);
+	for (k = 0; k < nspeed; k++)
+		printf("speed %.0f deg/measurement: %u/%u learned, %u within %.0f s, longest %.1f s\n",
+		       speeds[k], sp_learned[k], sp_runs[k], sp_fast[k],
+		       TARGET_LEARN_S, sp_longest[k]);
 	printf("disturbed: %u runs, %u refused, %u stored, of them %u with a heading error above %.0f deg (worst stored %.2f deg)\n",
 	       disturbed, refused, disturbed - refused, wrong,
 	       TARGET_DISTURBED_WORST, disturbed_worst);
