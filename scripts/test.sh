@@ -32,7 +32,8 @@
 # UndefinedBehaviorSanitizer (arithmetic accuracy sweep, chip model
 # conformance, simulator, factory test engine, record, save failure
 # injection), the mutation check of the arithmetic and the factory-test
-# engine against that suite (scripts/mutate.sh), a bounded libFuzzer run
+# engine against that suite (scripts/mutate.sh), the same suite built with
+# musl-gcc and run (scripts/musl-check.sh), a bounded libFuzzer run
 # of every parser of outside data, the systemd unit check, and a release
 # build of the factory-test benchmark.
 set -uo pipefail
@@ -196,6 +197,11 @@ boot_test() {
 	counted_run "$build/boot-debian.log" 'boot-debian: ' "$top/scripts/boot-debian.sh"
 }
 
+# the suite built with musl-gcc (scripts/musl-check.sh): its tests counted
+musl_suite() {
+	counted_run "$build/musl.log" 'musl: ' "$top/scripts/musl-check.sh"
+}
+
 benchmark() {
 	"$top/scripts/bench-factory-test.sh" "$build/release/daemon/as9888-calibd"
 }
@@ -205,6 +211,7 @@ stage "meson test (ASan+UBSan)" meson_suite
 stage "mutation check: every mutant of tests/mutate/mutants.txt killed" "$top/scripts/mutate.sh"
 stage "fuzz the parsers (60 s shared by the targets)" "$top/scripts/fuzz.sh" 60
 stage "release build" release_build
+stage "musl: daemon, libas9888magn and the suite built with musl-gcc" musl_suite
 stage "gpio.c against libgpiod 2.x" "$top/scripts/libgpiod2-check.sh"
 stage "systemd units" "$top/scripts/check-units.sh" "$build/release/daemon/as9888-calibd"
 stage "factory-test benchmark" benchmark
