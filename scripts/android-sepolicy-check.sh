@@ -4,11 +4,15 @@
 # Compile contrib/android/sepolicy/ with AOSP's platform policy, as Soong's
 # se_policy_conf and se_policy_cil do: m4 over the files in checkpolicy's
 # order (system/sepolicy's Android.bp se_build_files: each name in public/,
-# private/, then the vendor fragment), then checkpolicy -M -c 30, which also checks every
-# neverallow of the platform against the fragment's rules. The platform
-# alone is compiled first, so a failure is the fragment's. Then each
-# context in the fragment's file_contexts and genfs_contexts must name a
-# type the compiled policy has.
+# private/, vendor/ (the default HALs' domains, hal_sensors_default among
+# them, which a full build puts in the vendor policy), then the fragment),
+# then checkpolicy -M -c 30, which also checks every neverallow of the
+# platform against the fragment's rules. The platform alone is compiled
+# first, so a failure is the fragment's. Then each context in the
+# fragment's file_contexts and genfs_contexts must name a type the
+# compiled policy has. Last, contrib/android/sepolicy-persist/ (for trees
+# that label the persist root persist_file) is compiled on top, with
+# persist_file declared as such trees declare it.
 #
 # Needs a checkout of AOSP's system/sepolicy (not part of this tree; no CI
 # stage runs this):
@@ -59,19 +63,31 @@ conf() {
 }
 
 status=0
-conf "$work/platform.conf" "$sp/public" "$sp/private"
+conf "$work/platform.conf" "$sp/public" "$sp/private" "$sp/vendor"
 if checkpolicy -M -c 30 -o "$work/platform.bin" "$work/platform.conf" >"$work/platform.log" 2>&1; then
 	log "AOSP's platform policy alone compiles ($(grep -c . "$work/platform.conf.files") files, checkpolicy $(checkpolicy -V | awk '{ print $1 }'))"
 else
 	tail -5 "$work/platform.log"
 	die "AOSP's platform policy alone does not compile with this checkpolicy: the check cannot run"
 fi
-conf "$work/with.conf" "$sp/public" "$sp/private" "$ours"
+conf "$work/with.conf" "$sp/public" "$sp/private" "$sp/vendor" "$ours"
 if checkpolicy -M -c 30 -o "$work/with.bin" "$work/with.conf" >"$work/with.log" 2>&1; then
-	echo "android-sepolicy: as9888_calibd.te and genfs_contexts compile with the platform policy, its neverallows hold: ok"
+	echo "android-sepolicy: as9888_calibd.te, hal_sensors_default.te and genfs_contexts compile with the platform policy, its neverallows hold: ok"
 else
 	cat "$work/with.log"
 	echo "android-sepolicy: the fragment does not compile with the platform policy: FAIL"
+	status=1
+fi
+# a QCOM/Pixel-style tree: its persist_file, and our rules on it
+mkdir "$work/persist"
+echo 'type persist_file, file_type;' >"$work/persist/device_persist.te"
+conf "$work/persist.conf" "$sp/public" "$sp/private" "$sp/vendor" "$ours" "$work/persist" \
+	"$AS9888_REPO/contrib/android/sepolicy-persist"
+if checkpolicy -M -c 30 -o "$work/persist.bin" "$work/persist.conf" >"$work/persist.log" 2>&1; then
+	echo "android-sepolicy: sepolicy-persist/ compiles on a tree with persist_file: ok"
+else
+	cat "$work/persist.log"
+	echo "android-sepolicy: sepolicy-persist/ does not compile on a tree with persist_file: FAIL"
 	status=1
 fi
 
@@ -86,11 +102,11 @@ for t in $(sed -n 's/.*u:object_r:\([a-z0-9_]*\):s0.*/\1/p' "$ours/file_contexts
 done
 # every type an allow rule names is declared, by the platform or by us:
 # none that only a device tree defines (persist_file and the like)
-for t in $(sed -n 's/^allow \([a-z0-9_]*\) \([a-z0-9_]*\):.*/\1 \2/p' "$ours/as9888_calibd.te" |
+for t in $(sed -n 's/^allow \([a-z0-9_]*\) \([a-z0-9_]*\):.*/\1 \2/p' "$ours"/*.te |
 		tr ' ' '\n' | grep -vx self | sort -u); do
 	if grep -Eq "^(type|attribute) $t[,;]" "$work/platform.conf"; then
 		echo "android-sepolicy: $t: the platform's: ok"
-	elif grep -Eq "^type $t[,;]" "$ours/as9888_calibd.te"; then
+	elif grep -Eq "^type $t[,;]" "$ours"/*.te; then
 		echo "android-sepolicy: $t: ours: ok"
 	else
 		echo "android-sepolicy: $t is neither the platform's nor ours: FAIL"
