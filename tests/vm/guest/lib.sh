@@ -374,10 +374,11 @@ monotonic() {
 	od -A n -t d8 -v "$1" | awk 'NF == 2 { if (n++ && $2 <= last) bad++; last = $2 }
 		END { exit (n < 2 || bad) }'
 }
-# the longest time between two samples of a capture, in milliseconds
+# the longest time between two samples of a capture, in milliseconds;
+# "none" for a capture of fewer than two samples (there is no gap to give)
 max_gap_ms() {
 	od -A n -t d8 -v "$1" | awk 'NF == 2 { if (n++ && $2 - last > gap) gap = $2 - last; last = $2 }
-		END { printf "%d", gap / 1000000 }'
+		END { if (n > 1) printf "%d", gap / 1000000; else printf "none" }'
 }
 # mean timestamp difference in microseconds
 period_us() {
@@ -400,8 +401,10 @@ period_ok() {
 		nok "$1: mean period $2 us, asked $3 us (-10%, +100%)"
 	fi
 }
+# (an empty or missing capture prints "no samples", which no count equals)
 zbad() {
-	od -A n -t d2 -v "$1" | awk 'NF == 8 { if ($3 < 1020 || $3 > 1028) bad++ } END { print bad + 0 }'
+	od -A n -t d2 -v "$1" 2>/dev/null | awk 'NF == 8 { n++; if ($3 < 1020 || $3 > 1028) bad++ }
+		END { if (n) print bad + 0; else print "no samples" }'
 }
 
 # --- driver v2: compensated accelerometer data, 1024 LSB per g ---------------
@@ -498,9 +501,14 @@ bias_dac() {
 			printf "%s0x%02x", i ? " " : "", (l >= 0 ? 128 + l : -l) }
 		  printf "\n" }'
 }
-# within NAME GOT WANT TOL: decimals, |GOT - WANT| <= TOL
+# is_dec VALUE: a decimal number (optionally signed, with a fraction)
+is_dec() {
+	echo "$1" | awk '{ exit !(NR == 1 && $0 ~ /^[-+]?([0-9]+[.]?[0-9]*|[.][0-9]+)$/) }'
+}
+# within NAME GOT WANT TOL: decimals, |GOT - WANT| <= TOL (a GOT that is
+# not a number fails: awk would take it for 0)
 within() {
-	if [ -n "$2" ] && awk "BEGIN { d = ($2) - ($3); exit !(d <= $4 && d >= -($4)) }"; then
+	if is_dec "$2" && awk "BEGIN { d = ($2) - ($3); exit !(d <= $4 && d >= -($4)) }"; then
 		ok "$1"
 	else
 		nok "$1" "got '$2', want $3 +- $4"
