@@ -58,6 +58,8 @@
 /* consistency in time: means over this many successive samples */
 #define DRIFT_WINDOW		12
 #define DRIFT_SIGMAS		4.0
+/* the largest turn of the magnetometer against gravity taken out, deg */
+#define MAX_TURN_DEG		5.0
 
 /* the store's cells: cube faces split in 4 x 4 equal-angle cells */
 #define STORE_SPLIT		4
@@ -839,8 +841,11 @@ static void consistency(const struct magcal_session *s, const bool *use,
 			struct magcal_result *r)
 {
 	struct timed e[MAGCAL_MAX_SAMPLES], dip[MAGCAL_MAX_SAMPLES];
+	double a[NPARAM][NPARAM] = { { 0 } }, rhs[NPARAM] = { 0 }, x[NPARAM];
+	double cg[MAGCAL_MAX_SAMPLES][3], gp[MAGCAL_MAX_SAMPLES];
+	double c[3], g[3], row[4], theta[3] = { 0 }, nc, ng;
 	unsigned int i, ne = 0, nd = 0;
-	double c[3];
+	int j, k;
 
 	for (i = 0; i < s->n; i++) {
 		if (!use[i])
@@ -848,10 +853,45 @@ static void consistency(const struct magcal_session *s, const bool *use,
 		e[ne].seq = s->s[i].seq;
 		e[ne++].v = residual_ut(s, i, r);
 		magcal_apply(r, s->s[i].m, c);
-		if (s->s[i].has_g && norm3(s->s[i].g) > 0 && norm3(c) > 0) {
-			dip[nd].seq = s->s[i].seq;
-			dip[nd++].v = dip_of(c, s->s[i].g);
+		if (!s->s[i].has_g || !(norm3(s->s[i].g) > 0) ||
+		    !(norm3(c) > 0))
+			continue;
+		nc = norm3(c);
+		ng = norm3(s->s[i].g);
+		for (j = 0; j < 3; j++) {
+			g[j] = s->s[i].g[j] / ng;
+			c[j] /= nc;
 		}
+		/* sin of the angle to up, and its change per rotation of c */
+		gp[nd] = c[0] * g[0] + c[1] * g[1] + c[2] * g[2];
+		cg[nd][0] = c[1] * g[2] - c[2] * g[1];
+		cg[nd][1] = c[2] * g[0] - c[0] * g[2];
+		cg[nd][2] = c[0] * g[1] - c[1] * g[0];
+		row[0] = 1;
+		for (j = 0; j < 3; j++)
+			row[1 + j] = -cg[nd][j];
+		for (j = 0; j < 4; j++) {
+			for (k = 0; k < 4; k++)
+				a[j][k] += row[j] * row[k];
+			rhs[j] += row[j] * gp[nd];
+		}
+		dip[nd++].seq = s->s[i].seq;
+	}
+	/*
+	 * The magnetometer turned against the accelerometer (an asymmetric
+	 * soft iron, which a magnitude fit cannot see) makes the dip depend
+	 * on the orientation: the rotation that best makes it constant is
+	 * taken out first, unless it is beyond any board's (MAX_TURN_DEG)
+	 */
+	if (nd >= 2 * DRIFT_WINDOW && solve(4, a, rhs, x) &&
+	    norm3(x + 1) * DEG_PER_RAD <= MAX_TURN_DEG)
+		memcpy(theta, x + 1, sizeof(theta));
+	r->turn_deg = norm3(theta) * DEG_PER_RAD;
+	for (i = 0; i < nd; i++) {
+		double v = gp[i] + cg[i][0] * theta[0] + cg[i][1] * theta[1] +
+			   cg[i][2] * theta[2];
+
+		dip[i].v = asin(fmax(-1, fmin(1, -v))) * DEG_PER_RAD;
 	}
 	r->drift_ut = drift(e, ne);
 	r->dip_drift_deg = drift(dip, nd);

@@ -141,7 +141,12 @@ struct magcal_config {
  *		mean over 12 successive samples used (in the order they were
  *		kept) away from their median, beyond what the noise seen
  *		between neighbours explains; 0 for a field that stayed put
- * @dip_drift_deg: the same of the dip, degrees (0 without gravity)
+ * @dip_drift_deg: the same of the dip, degrees (0 without gravity),
+ *		after @turn_deg is taken out
+ * @turn_deg:	the magnetometer's turn against the accelerometer that best
+ *		makes the dip constant over the orientations (an asymmetric
+ *		soft iron), degrees, at most 5 (0: none found, or none that
+ *		small); judged by the gate, not applied: @w stays symmetric
  */
 struct magcal_result {
 	enum magcal_status status;
@@ -159,6 +164,7 @@ struct magcal_result {
 	bool has_dip;
 	double drift_ut;
 	double dip_drift_deg;
+	double turn_deg;
 };
 
 struct magcal_session;

@@ -494,9 +494,12 @@ static void rotation(double r[3][3])
  * A session of 300 orientations in a world with a field of 48 uT at 60
  * degrees of dip, which a slow magnet changes between samples 100 and 200
  * (half-sine): @bump_ut along the field (its magnitude), or the field
- * turned by @turn_deg in its vertical plane (its dip only)
+ * turned by @turn_deg in its vertical plane (its dip only); the
+ * magnetometer itself turned against the accelerometer by @mount_deg
+ * about its X axis all along (an asymmetric soft iron)
  */
-static struct magcal_result session_in_time(double bump_ut, double turn_deg)
+static struct magcal_result session_in_time(double bump_ut, double turn_deg,
+					    double mount_deg)
 {
 	struct board b = board_a;
 	struct magcal_session *s = magcal_new(NULL);
@@ -518,6 +521,9 @@ static struct magcal_result session_in_time(double bump_ut, double turn_deg)
 			f[i] = r[0][i] * w[0] + r[1][i] * w[1] + r[2][i] * w[2];
 			up[i] = r[2][i];
 		}
+		k = f[1];
+		f[1] = cos(mount_deg * DEG) * k - sin(mount_deg * DEG) * f[2];
+		f[2] = sin(mount_deg * DEG) * k + cos(mount_deg * DEG) * f[2];
 		k = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
 		for (i = 0; i < 3; i++)
 			f[i] /= k;
@@ -539,19 +545,28 @@ static void test_gate(void **state)
 	struct magcal_result r;
 
 	rng_state = 12;
-	r = session_in_time(0, 0);
+	r = session_in_time(0, 0, 0);
 	assert_int_equal(r.status, MAGCAL_OK);
 	assert_true(r.drift_ut < 0.1 && r.dip_drift_deg < 0.3);
 	assert_true(r.has_dip && fabs(r.dip_deg - 60) < 0.5);
+	assert_true(r.turn_deg < 0.3);
+
+	/*
+	 * the magnetometer turned by 3 degrees against gravity: the dip
+	 * depends on the orientation, but not on time; the turn is found
+	 */
+	r = session_in_time(0, 0, 3);
+	assert_int_equal(r.status, MAGCAL_OK);
+	assert_true(fabs(r.turn_deg - 3) < 0.3);
 
 	/* 1.5 uT: small enough for the residual (rms under 1.5 uT) */
-	r = session_in_time(1.5, 0);
+	r = session_in_time(1.5, 0, 0);
 	assert_true(r.residual_ut < 1.5);
 	assert_int_equal(r.status, MAGCAL_INCONSISTENT);
 	assert_true(r.drift_ut > 0.4);
 
 	/* the dip turned by 4 degrees: the magnitude stays */
-	r = session_in_time(0, 4);
+	r = session_in_time(0, 4, 0);
 	assert_true(r.residual_ut < 1.5);
 	assert_int_equal(r.status, MAGCAL_INCONSISTENT);
 	assert_true(r.dip_drift_deg > 1.0);
