@@ -389,6 +389,16 @@ static int apply_socket_group(struct cli_opts *o, const char *arg, char *err,
 	return 0;
 }
 
+static int apply_operator_group(struct cli_opts *o, const char *arg, char *err,
+				size_t errlen)
+{
+	if (!*arg)
+		return bad(err, errlen, "--operator-group needs a group name");
+	o->operator_group = arg;
+
+	return 0;
+}
+
 static int apply_lock_timeout(struct cli_opts *o, const char *arg, char *err,
 			      size_t errlen)
 {
@@ -504,6 +514,7 @@ static const struct cli_option cli_options[] = {
 	{ "socket", true, CMD(CLI_DAEMON) | CMD(CLI_REQUEST), apply_socket },
 	{ "socket-mode", true, CMD(CLI_DAEMON), apply_socket_mode },
 	{ "socket-group", true, CMD(CLI_DAEMON), apply_socket_group },
+	{ "operator-group", true, CMD(CLI_DAEMON), apply_operator_group },
 	{ "backend", true, CMDS_CHIP, apply_backend },
 	{ "unit", true, CMDS_CHIP, apply_unit },
 	{ "sim-clock", true, CMDS_CHIP, apply_sim_clock },

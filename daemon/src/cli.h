@@ -72,6 +72,8 @@ enum cli_command {
  * @socket_path:	the daemon's Unix socket
  * @socket_mode:	its permissions: who may send requests
  * @socket_group:	its group (NULL: the daemon's)
+ * @operator_group:	daemon: the group whose members may ask for check,
+ *			recalibrate and rollback besides root (NULL: root only)
  * @request:		what "request" asks the daemon
  * @lock_timeout_s:	longest wait for the record's lock
  * @state_group:	group trusted to write the record's files (NULL: none)
@@ -106,6 +108,7 @@ struct cli_opts {
 	const char *socket_path;
 	unsigned int socket_mode;
 	const char *socket_group;
+	const char *operator_group;
 	const char *request;
 	unsigned int lock_timeout_s;
 	const char *state_group;

@@ -10,19 +10,24 @@
 #define JSON_SUFFIX	" --json"
 #define QUOTED_MAX	REQUEST_LINE_MAX
 
+/*
+ * operator: only root and the operator group may ask (it uses the chip
+ * alone or changes the record); the others are a consumer's requests
+ */
 static const struct {
 	const char *name;
 	bool changes_state;
 	bool exclusive;
 	bool quiet;
+	bool operator;
 } kinds[] = {
-	[REQUEST_STATUS] = { "status", false, false, false },
-	[REQUEST_CHECK] = { "check", false, true, false },
-	[REQUEST_RECALIBRATE] = { "recalibrate", true, true, false },
-	[REQUEST_ROLLBACK] = { "rollback", true, true, false },
-	[REQUEST_MAGN] = { "magn", false, false, false },
+	[REQUEST_STATUS] = { "status", false, false, false, false },
+	[REQUEST_CHECK] = { "check", false, true, false, true },
+	[REQUEST_RECALIBRATE] = { "recalibrate", true, true, false, true },
+	[REQUEST_ROLLBACK] = { "rollback", true, true, false, true },
+	[REQUEST_MAGN] = { "magn", false, false, false, false },
 	/* its rare record rewrite is logged by the field mode itself */
-	[REQUEST_MAGN_FEED] = { "magn-feed", false, false, true },
+	[REQUEST_MAGN_FEED] = { "magn-feed", false, false, true, false },
 };
 
 #define KINDS	(sizeof(kinds) / sizeof(kinds[0]))
@@ -45,6 +50,11 @@ bool request_exclusive(enum request_kind kind)
 bool request_quiet(enum request_kind kind)
 {
 	return kinds[kind].quiet;
+}
+
+bool request_for_operator(enum request_kind kind)
+{
+	return kinds[kind].operator;
 }
 
 /*

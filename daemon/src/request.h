@@ -47,6 +47,12 @@ bool request_changes_state(enum request_kind kind);
 bool request_exclusive(enum request_kind kind);
 /* Frequent and routine (magn-feed): not logged when asked and done */
 bool request_quiet(enum request_kind kind);
+/*
+ * Only root and the daemon's operator group may ask (check, recalibrate,
+ * rollback: the chip alone, or the record changed); status, magn and
+ * magn-feed are open to every client of the socket
+ */
+bool request_for_operator(enum request_kind kind);
 
 /*
  * Parse the request line @line of @len bytes (without its newline; any

@@ -21,10 +21,17 @@
  * loses its oldest connection that has not sent its request line yet (the
  * idle one) to the new one, or is told "busy". SIGPIPE is ignored: a
  * client that hangs up only loses its answer.
- * Who may ask is decided by the socket's file permissions; the requester of
- * every request that changes the record or the device is logged.
+ * Who may connect is decided by the socket's file permissions: every
+ * client may ask for status, magn and magn-feed (a consumer's requests);
+ * check, recalibrate and rollback only root and the members of the
+ * operator group (--operator-group; request_for_operator()). Requests that
+ * change the record take a change from a budget (record_budget.h) and are
+ * refused when it is spent; their requester is named in every log line
+ * about them. Routine lines (requests of consumers, refusals) are bounded
+ * (log_limit.h), so a flood cannot push those lines out of the journal.
  */
 #include <errno.h>
+#include <grp.h>
 #include <limits.h>
 #include <poll.h>
 #include <signal.h>
@@ -41,6 +48,8 @@
 #include "commands.h"
 #include "fd_close.h"
 #include "iio.h"
+#include "log_limit.h"
+#include "record_budget.h"
 #include "request.h"
 #include "request_reply.h"
 #include "service_socket.h"
@@ -83,6 +92,7 @@ struct client {
 	struct request req;
 	char peer[PEER_DESC_LEN];
 	uid_t uid;
+	bool operator;			/* root, or in the operator group */
 	uint64_t seq;			/* order of connection */
 	pid_t pid;
 };
@@ -106,6 +116,11 @@ struct service {
 	uint64_t stop_deadline_ms;
 	unsigned long applied;
 	unsigned long apply_failures;
+	bool have_operator_gid;
+	gid_t operator_gid;
+	struct record_budget budget;
+	struct log_limit routine;	/* consumers' requests, dropped clients */
+	struct log_limit refusals;	/* of permission and of the budget */
 };
 
 static void log_msg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -115,6 +130,33 @@ static void log_msg(const char *fmt, ...)
 {
 	va_list ap;
 
+	fputs("as9888-calibd: ", stderr);
+	va_start(ap, fmt);
+	vfprintf(stderr, fmt, ap);
+	va_end(ap);
+	fputc('\n', stderr);
+}
+
+static uint64_t monotonic_ms(void);
+
+/*
+ * A line of a kind a flood can repeat (log_limit.h): logged unless the
+ * flood has used the second's share of @l; refusals have a share of their
+ * own, so that a flood of status requests cannot hide them
+ */
+static void log_limited(struct log_limit *l, const char *fmt, ...)
+	__attribute__((format(printf, 2, 3)));
+
+static void log_limited(struct log_limit *l, const char *fmt, ...)
+{
+	unsigned long suppressed;
+	va_list ap;
+
+	if (!log_limit_allow(l, monotonic_ms(), &suppressed))
+		return;
+	if (suppressed)
+		log_msg("%lu log line(s) like the next left out (more than %d a second)",
+			suppressed, LOG_LIMIT_LINES);
 	fputs("as9888-calibd: ", stderr);
 	va_start(ap, fmt);
 	vfprintf(stderr, fmt, ap);
@@ -241,17 +283,46 @@ static void client_refuse(struct client *c, const char *text, int status)
 	client_close(c);
 }
 
+/*
+ * A request that changes the record takes a change from the budget, or is
+ * refused (told when the next is allowed): false when refused
+ */
+static bool client_take_budget(struct service *s, struct client *c)
+{
+	uint64_t wait_ms = record_budget_take(&s->budget, monotonic_ms());
+	char text[256];
+	unsigned long long min;
+
+	if (!wait_ms)
+		return true;
+	min = (wait_ms + 59999) / 60000;
+	log_limited(&s->refusals, "%s refused for %s: the record's change budget is spent (next in %llu min)",
+		    request_name(c->req.kind), c->peer, min);
+	snprintf(text, sizeof(text),
+		 "error: too many changes of the record: the next is allowed in %llu min (at most %d at once, then one every %llu hours: the flash-wear budget)\n",
+		 min, RECORD_BUDGET_BURST,
+		 (unsigned long long)(RECORD_BUDGET_REFILL_MS / 3600000));
+	client_refuse(c, text, EXIT_FAILURE);
+
+	return false;
+}
+
 static void client_start(struct service *s, struct client *c)
 {
 	const char *name = request_name(c->req.kind);
 	pid_t pid;
 
-	if (!request_quiet(c->req.kind))
-		log_msg("%s requested%s%s", name,
-			request_changes_state(c->req.kind) ? " by " : "",
-			request_changes_state(c->req.kind) ? c->peer : "");
+	if (request_changes_state(c->req.kind)) {
+		if (!client_take_budget(s, c))
+			return;
+		log_msg("%s requested by %s", name, c->peer);
+	} else if (!request_quiet(c->req.kind)) {
+		log_limited(&s->routine, "%s requested", name);
+	}
 	pid = spawn(c->fd, run_request, s, c);
 	if (pid < 0) {
+		if (request_changes_state(c->req.kind))
+			record_budget_refund(&s->budget);
 		log_msg("%s not run: cannot fork: %s", name, strerror((int)-pid));
 		client_refuse(c, "as9888-calibd: the daemon cannot start the request\n",
 			      EXIT_FAILURE);
@@ -317,6 +388,15 @@ static void client_dispatch(struct service *s, struct client *c)
 		client_refuse(c, text, EXIT_STATUS_USAGE);
 		return;
 	}
+	if (request_for_operator(c->req.kind) && !c->operator) {
+		log_limited(&s->refusals, "%s refused for %s: not root nor in the operator group",
+			    request_name(c->req.kind), c->peer);
+		snprintf(text, sizeof(text),
+			 "error: %s is for root and the operator group only; every client may ask for status, magn and magn-feed\n",
+			 request_name(c->req.kind));
+		client_refuse(c, text, EXIT_FAILURE);
+		return;
+	}
 	if (!request_exclusive(c->req.kind)) {
 		client_start(s, c);
 		return;
@@ -324,7 +404,8 @@ static void client_dispatch(struct service *s, struct client *c)
 	c->state = CLIENT_WAITING;
 	c->arrival = s->arrivals++;
 	if (s->chip_busy)
-		log_msg("%s waits for the request before it", request_name(c->req.kind));
+		log_limited(&s->routine, "%s waits for the request before it",
+			    request_name(c->req.kind));
 	run_next(s);
 }
 
@@ -368,13 +449,17 @@ static void note_refusal(struct service *s, const char *peer)
 
 /*
  * A slot for a new client of @uid: a free one within @uid's share, else
- * the one of @uid's own oldest connection still without a request line
- * (told busy); NULL when there is neither.
+ * the one of a connection still without a request line (the idle one,
+ * told busy): @uid's own oldest, or, when the users' slots are all taken,
+ * the oldest of the user holding the most of them if that is more than
+ * one above @uid's (so that a few users cannot keep out another); NULL
+ * when there is none.
  */
 static struct client *slot_for(struct service *s, uid_t uid)
 {
-	struct client *free_slot = NULL, *idle = NULL;
-	unsigned int i, same = 0, users = 0;
+	struct client *free_slot = NULL, *idle = NULL, *other = NULL;
+	unsigned int held[CLIENTS_MAX] = { 0 };
+	unsigned int i, j, same = 0, users = 0, most = 0;
 	bool fits;
 
 	for (i = 0; i < CLIENTS_MAX; i++) {
@@ -385,6 +470,11 @@ static struct client *slot_for(struct service *s, uid_t uid)
 			continue;
 		}
 		users += c->uid != 0;
+		/* held[i]: the slots of client i's user, counted at its first */
+		for (j = 0; j < i && (s->clients[j].state == CLIENT_FREE ||
+				      s->clients[j].uid != c->uid); j++)
+			;
+		held[j]++;
 		if (c->uid != uid)
 			continue;
 		same++;
@@ -395,10 +485,26 @@ static struct client *slot_for(struct service *s, uid_t uid)
 		users < CLIENTS_MAX - CLIENTS_ROOT_RESERVED));
 	if (fits)
 		return free_slot;
+	if (!idle && uid != 0 && same < CLIENTS_PER_UID) {
+		/* the users' share is full: the biggest holder gives one up */
+		for (i = 0; i < CLIENTS_MAX; i++)
+			if (held[i] > held[most])
+				most = i;
+		for (i = 0; held[most] > same + 1 && i < CLIENTS_MAX; i++) {
+			struct client *c = &s->clients[i];
+
+			if (c->state == CLIENT_READING && c->uid == s->clients[most].uid &&
+			    (!other || c->seq < other->seq))
+				other = c;
+		}
+		idle = other;
+	}
 	if (!idle)
 		return NULL;
 	note_refusal(s, idle->peer);
-	client_refuse(idle, "error: busy: a newer connection of the same user took this one's place; send the request line at once\n",
+	client_refuse(idle, idle == other ?
+		      "error: busy: another user needed a connection and this user held the most; send the request line at once\n" :
+		      "error: busy: a newer connection of the same user took this one's place; send the request line at once\n",
 		      EXIT_FAILURE);
 
 	return idle;
@@ -428,6 +534,8 @@ static void accept_clients(struct service *s)
 		c->state = CLIENT_READING;
 		c->deadline_ms = monotonic_ms() + REQUEST_DEADLINE_MS;
 		c->uid = uid;
+		c->operator = uid == 0 ||
+			      (s->have_operator_gid && peer_in_group(fd, s->operator_gid));
 		c->seq = s->connections++;
 		memcpy(c->peer, peer, sizeof(c->peer));
 		/* a client sends its line with its connection: take it now */
@@ -446,8 +554,8 @@ static void expire_clients(struct service *s)
 
 		if (c->state != CLIENT_READING || now < c->deadline_ms)
 			continue;
-		log_msg("client %s dropped: no request line within %d ms", c->peer,
-			REQUEST_DEADLINE_MS);
+		log_limited(&s->routine, "client %s dropped: no request line within %d ms",
+			    c->peer, REQUEST_DEADLINE_MS);
 		client_refuse(c, "error: no request line in time\n", EXIT_STATUS_USAGE);
 	}
 }
@@ -479,9 +587,16 @@ static void client_done(struct service *s, struct client *c, int wstatus)
 	if (!WIFEXITED(wstatus))
 		request_reply_status_now(c->fd, "as9888-calibd: the request was killed\n",
 					 status);
-	if (!request_quiet(c->req.kind) || status)
-		log_msg("%s done: exit status %d", request_name(c->req.kind),
-			status);
+	if (request_changes_state(c->req.kind)) {
+		/* failed: nothing was written (a command writes only on success) */
+		if (status)
+			record_budget_refund(&s->budget);
+		log_msg("%s done: exit status %d (requested by %s)",
+			request_name(c->req.kind), status, c->peer);
+	} else if (!request_quiet(c->req.kind) || status) {
+		log_limited(&s->routine, "%s done: exit status %d",
+			    request_name(c->req.kind), status);
+	}
 	if (request_exclusive(c->req.kind))
 		s->chip_busy = false;
 	client_close(c);
@@ -676,6 +791,21 @@ int cmd_daemon(const struct cli_opts *o)
 
 	for (i = 0; i < CLIENTS_MAX; i++)
 		s.clients[i].fd = -1;
+	if (o->operator_group) {
+		struct group *gr = getgrnam(o->operator_group);
+		char *end;
+		unsigned long gid = strtoul(o->operator_group, &end, 10);
+
+		/* a name, or a number as chown(1) takes one */
+		if (!gr && (*end || *o->operator_group < '0' || *o->operator_group > '9' ||
+			    gid >= (gid_t)-1)) {
+			log_msg("--operator-group %s: no such group", o->operator_group);
+			return EXIT_FAILURE;
+		}
+		s.have_operator_gid = true;
+		s.operator_gid = gr ? gr->gr_gid : (gid_t)gid;
+	}
+	record_budget_init(&s.budget, monotonic_ms());
 	/* first: a descriptor passed as fd 3 is checked before we open any */
 	if (service_socket_open(o, &s.sock, err, sizeof(err))) {
 		log_msg("%s", err);
@@ -693,7 +823,9 @@ int cmd_daemon(const struct cli_opts *o)
 			strerror(-s.uevent_fd));
 
 	recover_record(o);
-	log_msg("ready: record %s, socket %s", o->record_path, o->socket_path);
+	log_msg("ready: record %s, socket %s, operators: root%s%s", o->record_path,
+		o->socket_path, o->operator_group ? " and group " : " only",
+		o->operator_group ? o->operator_group : "");
 	apply_present(&s);
 	while ((ret = serve_once(&s)) > 0)
 		;

@@ -299,3 +299,32 @@ uid_t peer_describe(int fd, char desc[PEER_DESC_LEN])
 
 	return cred.uid;
 }
+
+/* The Linux option number, where the libc's headers do not name it */
+#ifndef SO_PEERGROUPS
+#define SO_PEERGROUPS	59
+#endif
+/* Supplementary groups of a peer looked at; more are not */
+#define PEER_GROUPS_MAX	256
+
+bool peer_in_group(int fd, gid_t gid)
+{
+	gid_t groups[PEER_GROUPS_MAX];
+	socklen_t len = sizeof(groups);
+	struct ucred cred;
+	socklen_t clen = sizeof(cred);
+	size_t i;
+
+	if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &clen))
+		return false;
+	if (cred.gid == gid)
+		return true;
+	/* the groups the peer had when it connected (Linux 4.13 and later) */
+	if (getsockopt(fd, SOL_SOCKET, SO_PEERGROUPS, groups, &len))
+		return false;
+	for (i = 0; i < len / sizeof(groups[0]); i++)
+		if (groups[i] == gid)
+			return true;
+
+	return false;
+}

@@ -44,4 +44,11 @@ void service_socket_close(const struct cli_opts *o, struct service_socket *s);
  */
 uid_t peer_describe(int fd, char desc[PEER_DESC_LEN]);
 
+/*
+ * Whether the process that connected @fd was in group @gid then (its
+ * primary group or one of its supplementary groups); false when that
+ * cannot be told
+ */
+bool peer_in_group(int fd, gid_t gid);
+
 #endif

@@ -4,7 +4,9 @@
 
 hostile_clients.py SOCKET hangup N REQUEST  send REQUEST and hang up at once, N times
 hostile_clients.py SOCKET silent N SECONDS   N connections that send nothing, held
-                                            SECONDS (prints "ready" once connected)
+                                            SECONDS at most (prints "ready" once
+                                            connected, then "dropped K": how many
+                                            the daemon let go at their deadline)
 hostile_clients.py SOCKET trickle PERIOD LIMIT  one byte every PERIOD s, no newline;
                                             prints how long the daemon took to hang
                                             up, or "held" after LIMIT s
@@ -32,11 +34,26 @@ def hangup(path, n, request):
 
 
 def silent(path, n, seconds):
+    """Hold the connections; print how many the daemon let go for want of
+    a request line ("dropped K") once each was answered or SECONDS passed"""
     held = [connect(path) for _ in range(int(n))]
     print("ready", flush=True)
-    time.sleep(float(seconds))
+    deadline = time.monotonic() + float(seconds)
+    dropped = 0
     for s in held:
+        reply = b""
+        try:
+            while True:
+                s.settimeout(max(0.01, deadline - time.monotonic()))
+                b = s.recv(4096)
+                if not b:
+                    break
+                reply += b
+        except (socket.timeout, OSError):
+            pass
+        dropped += b"no request line in time" in reply
         s.close()
+    print("dropped %d" % dropped, flush=True)
 
 
 def trickle(path, period, limit):
