@@ -23,6 +23,7 @@ export AS9888_SYSFS=$work/sys
 . "$here/background.sh"
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
+tap_plan 25
 TAP_SHOW="$work/log"
 # clients WHAT ARGS...: hostile_clients.py on the socket (in the background
 # too: exec, so that killing $! kills the clients)
