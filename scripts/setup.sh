@@ -13,6 +13,7 @@ packages=(
 	clang-14 libclang-rt-14-dev
 	strace python3 python3-jsonschema libxml2-utils
 	systemd man-db
+	busybox-static
 )
 
 missing=()
