@@ -5,8 +5,11 @@
 #
 # Each mutant of tests/mutate/mutants.txt (default: all; or the ones named)
 # changes one expression of the shared arithmetic (the driver's
-# as9888_calib.c, lib/calib/) or of the factory-test engine
-# (daemon/src/ftest.c). For each, the suite is built and run in a scratch
+# as9888_calib.c, lib/calib/), of the factory-test engine (daemon/src/ftest*)
+# or of the magnetometer's fit (lib/magcal/). The suite includes
+# calib-kunit, the driver's KUnit cases built as a program, so a mutant of
+# the shared arithmetic also meets KUnit's hand-computed values. For each
+# mutant, the suite is built and run in a scratch
 # copy of this checkout (working-tree files, tracked and untracked but not
 # ignored); the checkout itself is never written, and the scratch copy is
 # removed on exit, ^C included. A mutant is "killed" when the suite fails,
@@ -83,8 +86,12 @@ for m in "${mutants[@]}"; do
 	t=$(date +%s)
 	cp -p "$src/$file" "$scratch/orig"
 	if ! python3 - "$src/$file" "$from" "$to" <<'EOF'
-import sys
+import re, sys
 path, old, new = sys.argv[1:]
+# \t, \n and \\ in the list stand for a TAB, a newline and a backslash
+unescape = lambda s: re.sub(r"\\([tn\\])",
+                            lambda m: {"t": "\t", "n": "\n", "\\": "\\"}[m.group(1)], s)
+old, new = unescape(old), unescape(new)
 text = open(path).read()
 if text.count(old) != 1:
     sys.exit("text found %d times" % text.count(old))

@@ -15,7 +15,10 @@
 # when it counted none; a skipped check (a TAP "# SKIP", a KUnit skip) is
 # counted as skipped, never as passed. The exit status is 0 only when
 # nothing failed. A full run refuses the variables that narrow a stage
-# (AS9888_VM_ONLY, AS9888_SERIES_SKIP_DOCS): a narrowed run is not "all".
+# (AS9888_VM_ONLY, AS9888_SERIES_SKIP_DOCS, AS9888_SPARSE, AS9888_SRC): a
+# narrowed run is not "all". In a full run every skipped check must be an
+# environment fact listed in tests/skips-allowed (the entries that applied
+# are printed); any other skip fails the run.
 #
 # Kernel: the two kernel trees from Debian's packages (6.1 LTS and the
 # newest, 7.2), the driver built against both with W=1, sparse and
@@ -58,6 +61,9 @@ if [ "$what" = all ]; then
 	[ -z "${AS9888_VM_ONLY:-}" ] || narrow="$narrow AS9888_VM_ONLY=\"$AS9888_VM_ONLY\""
 	[ "${AS9888_SERIES_SKIP_DOCS:-0}" = 0 ] ||
 		narrow="$narrow AS9888_SERIES_SKIP_DOCS=$AS9888_SERIES_SKIP_DOCS"
+	# another sparse or another source tree: not this checkout's checks
+	[ -z "${AS9888_SPARSE:-}" ] || narrow="$narrow AS9888_SPARSE=$AS9888_SPARSE"
+	[ -z "${AS9888_SRC:-}" ] || narrow="$narrow AS9888_SRC=$AS9888_SRC"
 	if [ -n "$narrow" ]; then
 		echo "scripts/test.sh all: refusing a narrowed full run:$narrow" >&2
 		echo "(unset it, or run scripts/vm-run.sh / scripts/upstream-series.sh with it)" >&2
@@ -239,6 +245,14 @@ echo "stage times (wall clock, this run started $(date -u -d "@$run_start" '+%F 
 printf '  %s\n' "${stage_times[@]}"
 printf '%8d s  total\n' $(($(date +%s) - run_start))
 echo
+# A full run's skips: each must match an entry of tests/skips-allowed
+if [ "$what" = all ] && [ "$skipped" -gt 0 ]; then
+	if ! "$top/scripts/skips-allowed.sh" "$top/tests/skips-allowed" "$skipped" \
+		"$build/vm.log" "$build/kunit.log" "$build/boot-debian.log" "$build/musl.log"; then
+		failed=$((failed + 1))
+		failures+=("skipped checks outside tests/skips-allowed")
+	fi
+fi
 [ ${#failures[@]} -eq 0 ] || printf 'failed: %s\n' "${failures[@]}"
 # every failed stage is at least one failure (stage()), so the line and
 # the exit status agree with the list above
