@@ -91,6 +91,8 @@ enum cli_command {
  *			(REQUEST_FEED_VALUES), NULL otherwise
  * @log_fd:		in a request the daemon runs: its log (its stderr
  *			before the reply took it), else -1
+ * @requester:		in a request the daemon runs: who asked ("uid U
+ *			gid G pid P"), for the log; else NULL
  * @ftest:		factory-test options
  */
 struct cli_opts {
@@ -121,6 +123,7 @@ struct cli_opts {
 	int32_t magn_earth_nt;
 	const double *magn_feed;
 	int log_fd;
+	const char *requester;
 	struct ftest_opts ftest;
 };
 

@@ -256,10 +256,10 @@ static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
 	}
 	/* the daemon's log (the journal), and the client */
 	dprintf(o->log_fd >= 0 ? o->log_fd : STDERR_FILENO,
-		"as9888-calibd: field mode: magnetometer calibration refined (hard iron %.3f %.3f %.3f uT, residual %.3f uT) and stored in %s\n",
+		"as9888-calibd: field mode: magnetometer calibration refined (hard iron %.3f %.3f %.3f uT, residual %.3f uT) and stored in %s (the sample that completed the fit from %s)\n",
 		next.hard_iron_nt[0] / 1000.0, next.hard_iron_nt[1] / 1000.0,
 		next.hard_iron_nt[2] / 1000.0, next.residual_nt / 1000.0,
-		o->record_path);
+		o->record_path, o->requester ? o->requester : "this command");
 	printf("stored in %s\n", o->record_path);
 
 	/* the magnetometer's part, on this chip: the accelerometer's is as it was */

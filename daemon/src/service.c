@@ -248,6 +248,7 @@ static int run_request(int fd, struct service *s, void *arg)
 	o.magn_feed = c->req.feed;
 	/* the daemon's log, which the reply takes stderr from */
 	o.log_fd = dup(STDERR_FILENO);
+	o.requester = c->peer;
 	return request_reply_run(fd, request_fn[c->req.kind], &o, c->req.json);
 }
 

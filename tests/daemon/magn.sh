@@ -121,8 +121,9 @@ frc=$?
 check "the 50th: a good fit, stored as format 2" eval '[ $frc -eq 0 ] &&
 	grep -q "^fit: ok" "$work/feed" && grep -q "^format = as9888-calibration 2$" "$rec"'
 check "the learned hard iron is the board's, within 1.5 uT" hard_iron_near 1.5 120 -80 45
-check "the rewrite is logged once, the samples not at all" eval '
+check "the rewrite is logged once, naming who fed it, the samples not at all" eval '
 	[ "$(grep -c "field mode: magnetometer calibration refined" "$work/log")" -eq 1 ] &&
+	grep -q "calibration refined .* from uid $(id -u) gid $(id -g) pid [0-9]" "$work/log" &&
 	! grep -q "magn-feed" "$work/log"'
 
 # the board's hard iron moves by 5 uT: within 6 hours nothing is rewritten
