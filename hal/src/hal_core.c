@@ -102,9 +102,13 @@ static struct sensor *sensor_of(struct as9888_hal *h, int handle)
 	return handle >= 1 && handle <= AS9888_SENSOR_COUNT ? &h->sensor[handle - 1] : NULL;
 }
 
+/* The last error, cut to fit */
 static void set_error(struct as9888_hal *h, const char *msg)
 {
-	snprintf(h->err, sizeof(h->err), "%s", msg);
+	size_t n = strnlen(msg, sizeof(h->err) - 1);
+
+	memcpy(h->err, msg, n);
+	h->err[n] = '\0';
 }
 
 /* ---- the sensor list ---- */
