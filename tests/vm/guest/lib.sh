@@ -13,9 +13,10 @@ diag() { echo "# $*"; }
 # its top. run-all.sh reports planned and made after the file, and the host
 # fails a file that made another number. A count that depends on what the
 # file finds (a loop over the devices present, a branch that checks more)
-# is planned as the number the bench's fixed setup gives, and the branch
-# that makes more or fewer says so with plan_more N / plan_more -N, next to
-# the checks it adds or drops, with the reason.
+# is planned as the number the bench's fixed setup gives. A branch that
+# cannot make its checks fails every one of them (nok_for N), so the plan
+# never goes down; a branch that adds failures says so with plan_more N,
+# next to the checks it adds, with the reason.
 T_PLAN=""
 T_FILE0=0
 plan() { T_PLAN=$1; }
@@ -30,6 +31,17 @@ bail_rest() {
 	while [ $_bl_i -lt "${T_PLAN:-0}" ]; do
 		nok "not made: planned check $((_bl_i + 1)) of $T_PLAN ($1)"
 		_bl_i=$((_bl_i + 1))
+	done
+}
+# nok_for N NAME REASON: a branch that cannot make its N checks fails
+# them all (NAME with REASON, then N - 1 "not made"), so that the file's
+# plan stays what it declared at its top
+nok_for() {
+	if [ -n "${3:-}" ]; then nok "$2" "$3"; else nok "$2"; fi
+	_nf_i=1
+	while [ $_nf_i -lt "$1" ]; do
+		nok "not made: check $((_nf_i + 1)) of $1 after '$2'"
+		_nf_i=$((_nf_i + 1))
 	done
 }
 ok() {
