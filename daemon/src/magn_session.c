@@ -92,6 +92,7 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 		      size_t size)
 {
 	const struct magcal_result *f = &res->fit;
+	struct magcal_config cfg;
 
 	if (!res->solved || f->status == MAGCAL_NO_COVERAGE) {
 		snprintf(buf, size, "not enough orientations covered (%.0f%% in %.0f s, %u samples): turn the device slowly through every direction (a figure eight, then over on every side) and run again",
@@ -109,8 +110,10 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 			 f->residual_ut, f->rejected);
 		break;
 	case MAGCAL_INCONSISTENT:
-		snprintf(buf, size, "the field changed during the session (its strength drifted by %.2f uT, its dip by %.1f deg beyond the noise): a magnet or steel moving slowly near the device; nothing stored, run again away from it",
-			 f->drift_ut, f->dip_drift_deg);
+		magcal_config_default(&cfg);
+		snprintf(buf, size, "the field changed during the session (its strength drifted by %.2f uT, its dip by %.2f deg beyond the noise; at most %.2f uT and %.2f deg are taken): a magnet or steel moving slowly near the device; run again away from it",
+			 f->drift_ut, f->dip_drift_deg, cfg.max_drift_ut,
+			 cfg.max_dip_drift_deg);
 		break;
 	default:
 		snprintf(buf, size, "the fit failed (%s): run again, turning the device through every direction",

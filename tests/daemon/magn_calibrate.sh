@@ -7,7 +7,8 @@
 # --earth-field makes the stored field the site's; a device lying still
 # and an implausible field fail with a clear message and leave the record
 # as it was; a passing magnet's samples are rejected and the result stays
-# right; the options are checked. Output is TAP.
+# right; a slow weak magnet leaves the result right or is refused with
+# the record as it was; the options are checked. Output is TAP.
 set -u
 
 calibd=${1:?usage: magn_calibrate.sh PATH-TO-as9888-calibd}
@@ -18,7 +19,7 @@ export ASAN_OPTIONS=detect_leaks=1
 trap 'rm -rf "$work"' EXIT
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
-tap_plan 21
+tap_plan 23
 TAP_SHOW="$work/err $work/out"
 mkdir -p "$work/sys"
 export AS9888_SYSFS=$work/sys
@@ -128,6 +129,31 @@ import sys
 keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines() if " = " in l)
 b = [float(v) for v in keys["magn_hard_iron"].split()]
 assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b' "$rec"
+
+# a weak magnet moving slowly past (17.6 uT peak over 38 s, from the
+# start: a phone's speaker, a laptop's hinge), which a fit absorbs into
+# the hard iron (before the store and the gate of issue 39 it was stored
+# 9.6 uT off): the gate refuses the fits while the magnet's samples are
+# in the store, the store replaces them as the turning goes on, and the
+# stored hard iron is the board's
+cp "$work/board.unit" "$work/slow.unit"
+printf 'disturbance = 10 -12 8 760\n' >>"$work/slow.unit"
+cp "$rec" "$work/before"
+run magn-calibrate --sim-clock virtual --unit "$work/slow.unit" --record "$rec"
+check "a slow weak magnet: exit 0, the stored hard iron within 1 uT" eval '
+	[ $rc -eq 0 ] && python3 -c "
+import sys
+keys = dict(l.split(\" = \", 1) for l in open(sys.argv[1]).read().splitlines() if \" = \" in l)
+b = [float(v) for v in keys[\"magn_hard_iron\"].split()]
+assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b" "$rec"'
+# the same magnet, slower (60 s) and a session of 15 s, which ends while
+# it is there (before: stored 4 uT off): refused, the record unchanged
+sed 's/^disturbance = .*/disturbance = 10 -12 8 1200/' "$work/slow.unit" >"$work/slower.unit"
+cp "$rec" "$work/before"
+run magn-calibrate --sim-clock virtual --unit "$work/slower.unit" --timeout 15 --record "$rec"
+check "a slow magnet through the whole session: exit 1, the field changed, record unchanged" eval '
+	[ $rc -eq 1 ] && says "the field changed during the session" err &&
+	cmp -s "$rec" "$work/before"'
 
 # through the driver (a sysfs tree like its own, readings that never
 # change: a device lying still), in real time
