@@ -27,7 +27,7 @@ out=${AS9888_BUILD:-$top/build}/deb
 t0=$(date +%s)
 mkdir -p "$out"
 
-ensure_pkgs dpkg-dev debhelper dh-dkms lintian meson ninja-build pkgconf libgpiod-dev gcc
+ensure_pkgs dpkg-dev debhelper dh-dkms lintian meson ninja-build pkgconf libgpiod-dev gcc systemd udev
 
 tree=$(git -C "$top" rev-parse 'HEAD^{tree}')
 ver=$(git -C "$top" show HEAD:debian/changelog | sed -n '1s/^as9888 (\([^)]*\)).*/\1/p')

@@ -55,7 +55,7 @@ KVER=$(dpkg-query -W -f='${Depends}' linux-headers-amd64 |
 
 NAME=$(sed -n 's/^PACKAGE_NAME="\{0,1\}\([^"]*\)"\{0,1\}$/\1/p' "$CONF")
 VER=$(sed -n 's/^PACKAGE_VERSION="\{0,1\}\([^"]*\)"\{0,1\}$/\1/p' "$CONF")
-mapfile -t MODS < <(sed -n 's/^BUILT_MODULE_NAME\[[0-9]*\]="\{0,1\}\([^"]*\)"\{0,1\}$/\1/p' "$CONF")
+mapfile -t MODS < <(sed -n 's/^[[:space:]]*BUILT_MODULE_NAME\[[0-9]*\]="\{0,1\}\([^"]*\)"\{0,1\}$/\1/p' "$CONF")
 if [ -z "$NAME" ] || [ -z "$VER" ] || [ "${#MODS[@]}" -eq 0 ]; then
 	die "dkms.conf lacks PACKAGE_NAME, PACKAGE_VERSION or BUILT_MODULE_NAME"
 fi

@@ -24,7 +24,8 @@
 # newest, 7.2), the driver built against both with W=1, sparse and
 # checkpatch --strict, the devicetree binding checked with dt-schema, the
 # KUnit suite on both under UML, the DKMS build on Debian 12's headers, the
-# Debian packages (dpkg-buildpackage, lintian), the boot test (a debootstrap
+# Debian packages (dpkg-buildpackage, lintian), their apt install in a
+# throwaway root with the standard and the cloud kernel's headers, the boot test (a debootstrap
 # Debian 12 with Debian's own kernel and the packages installed with apt,
 # booted three times in QEMU: systemd, BusyBox init, systemd with an
 # upgrade and a purge), and the VM bench:
@@ -203,6 +204,11 @@ boot_test() {
 	counted_run "$build/boot-debian.log" 'boot-debian: ' "$top/scripts/boot-debian.sh"
 }
 
+# the packages installed with dkms on two kernels: its checks counted
+dkms_install() {
+	counted_run "$build/dkms-install.log" 'dkms-install: ' "$top/scripts/dkms-install-check.sh"
+}
+
 # the suite built with musl-gcc (scripts/musl-check.sh): its tests counted
 musl_suite() {
 	counted_run "$build/musl.log" 'musl: ' "$top/scripts/musl-check.sh"
@@ -235,6 +241,8 @@ if [ "$what" = all ]; then
 	stage "KUnit on 6.1 and 7.2 (UML)" kunit_suite
 	stage "DKMS build against Debian 12's headers" "$top/scripts/dkms-check.sh"
 	stage "Debian packages (dpkg-buildpackage, lintian)" "$top/scripts/deb-build.sh"
+	stage "DKMS: apt install of the packages on Debian's standard kernel (built) and cloud kernel (skipped, saying why)" \
+		dkms_install
 	stage "boot test: Debian 12 with Debian's kernel, DKMS and systemd in QEMU" boot_test
 	stage "VM bench: driver, adapter and daemon in QEMU on 6.1 and 7.2" vm_bench
 fi
