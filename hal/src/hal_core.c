@@ -659,6 +659,8 @@ void as9888_hal_close(struct as9888_hal *h)
 	pthread_mutex_lock(&h->lock);
 	h->stop = true;
 	wake(h);
+	/* a call waiting for the reader gives up */
+	pthread_cond_broadcast(&h->applied);
 	pthread_mutex_unlock(&h->lock);
 	pthread_join(h->reader, NULL);
 	hal_stream_stop(&h->accel);
