@@ -21,6 +21,22 @@ static bool try_solve(struct magcal_session *fit, struct magn_session_result *re
 	       res->fit.coverage >= MAGN_SESSION_COVERAGE;
 }
 
+/*
+ * The field drifting now (a fit the gate refused): said once while it
+ * lasts, so the user can step away from what moves; true while it does
+ */
+static bool warn_drift(const struct magn_session_result *res, bool warned,
+		       FILE *progress)
+{
+	bool drifting = res->fit.status == MAGCAL_INCONSISTENT;
+
+	if (drifting && !warned && progress) {
+		fprintf(progress, "the field is changing (a magnet or steel moving nearby?): keep turning, away from it; what it changed is left out\n");
+		fflush(progress);
+	}
+	return drifting;
+}
+
 int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 		     double earth_ut, FILE *progress,
 		     struct magn_session_result *res, char *err, size_t errlen)
@@ -31,6 +47,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 	unsigned int kept = 0, next_solve = MAGN_SESSION_SOLVE_EVERY;
 	unsigned int next_progress = MAGN_SESSION_PROGRESS_EVERY;
 	struct magn_reading r;
+	bool warned = false;
 	int ret = -ETIMEDOUT;
 
 	memset(res, 0, sizeof(*res));
@@ -71,6 +88,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 				ret = 0;
 				break;
 			}
+			warned = warn_drift(res, warned, progress);
 		}
 		magn_source_sleep(src, MAGN_SESSION_INTERVAL_NS);
 		now = magn_source_now_ns(src);
