@@ -77,7 +77,8 @@ grep '^P: ' "$out/lintian.log" | sed 's/^/  lintian /' || true
 mver=$(sed -n "s/^[[:space:]]*version: '\([^']*\)'.*/\1/p" "$out/src/meson.build" | head -n1)
 dver=$(sed -n 's/^PACKAGE_VERSION="\{0,1\}\([^"]*\)"\{0,1\}$/\1/p' "$out/src/dkms.conf")
 if [ "$mver" = "$ver" ] && [ "$dver" = "$ver" ] &&
-	! grep -v " usr/src/as9888-$ver/" "$out/src/debian/as9888-dkms.install" | grep -q .; then
+	! grep -v -e " usr/src/as9888-$ver/" -e " usr/libexec/as9888-dkms/\$" \
+		"$out/src/debian/as9888-dkms.install" | grep -q .; then
 	ok "one version: changelog, meson.build, dkms.conf, /usr/src/as9888-$ver"
 else
 	fail "versions differ: changelog $ver, meson.build $mver, dkms.conf $dver (and debian/as9888-dkms.install)"
