@@ -23,6 +23,7 @@
 # Kernel: the two kernel trees from Debian's packages (6.1 LTS and the
 # newest, 7.2), the driver built against both with W=1, sparse and
 # checkpatch --strict, the devicetree binding checked with dt-schema, the
+# Yocto layer (oelint-adv per release, SRCREV's tree, the kernel fragment), the
 # KUnit suite on both under UML, the DKMS build on Debian 12's headers, the
 # Debian packages (dpkg-buildpackage, lintian), their apt install in a
 # throwaway root with the standard and the cloud kernel's headers, the boot test (a debootstrap
@@ -209,6 +210,11 @@ dkms_install() {
 	counted_run "$build/dkms-install.log" 'dkms-install: ' "$top/scripts/dkms-install-check.sh"
 }
 
+# contrib/yocto/meta-as9888 (scripts/yocto-check.sh): its checks counted
+yocto_check() {
+	counted_run "$build/yocto.log" 'yocto: ' "$top/scripts/yocto-check.sh"
+}
+
 # the suite built with musl-gcc (scripts/musl-check.sh): its tests counted
 musl_suite() {
 	counted_run "$build/musl.log" 'musl: ' "$top/scripts/musl-check.sh"
@@ -238,6 +244,8 @@ if [ "$what" = all ]; then
 	stage "upstream series on 7.2: git am, checkpatch and in-tree W=1 C=1 at every patch, kernel-doc, ABI, dt_binding_check, htmldocs" \
 		"$top/scripts/upstream-series.sh"
 	stage "devicetree binding (dt-schema)" "$top/scripts/dt-check.sh"
+	stage "Yocto layer: oelint-adv for each release, the pinned tree takes the recipe's flags, the kernel fragment" \
+		yocto_check
 	stage "KUnit on 6.1 and 7.2 (UML)" kunit_suite
 	stage "DKMS build against Debian 12's headers" "$top/scripts/dkms-check.sh"
 	stage "Debian packages (dpkg-buildpackage, lintian)" "$top/scripts/deb-build.sh"

@@ -82,7 +82,7 @@ check "Yocto recipe and Buildroot package: the product flags of this test" \
 	python3 - "$src/contrib" $product_flags <<'PY'
 import re, sys
 top, want = sys.argv[1], set(sys.argv[2:])
-bb = open(top + "/yocto/as9888-calibd_0.1.0.bb").read()
+bb = open(top + "/yocto/meta-as9888/recipes-sensors/as9888-calibd/as9888-calibd_git.bb").read()
 flags = set(re.search(r'^EXTRA_OEMESON = "([^"]*)"', bb, re.M).group(1).split())
 pc = re.search(r'^PACKAGECONFIG \?\?= "([^"]*)"', bb, re.M).group(1).split()
 for name, on, off in re.findall(r'^PACKAGECONFIG\[(\w+)\] = "([^,]*),([^,]*),', bb, re.M):
