@@ -25,6 +25,8 @@
 # headers, a few minutes); each run installs into a fresh copy of it.
 # Needs root. Prints "dkms-install: N passed, N failed".
 set -euo pipefail
+# the checks are eval'd strings, expanded when they run
+# shellcheck disable=SC2016
 
 # shellcheck source=scripts/kernel-common.sh
 . "$(dirname "$0")/kernel-common.sh"
@@ -115,8 +117,16 @@ check() {
 mods() { ls "$troot/lib/modules/$1/updates/dkms/" 2>/dev/null; }
 
 check "apt install succeeds with the cloud kernel's headers installed (exit $rc)" [ "$rc" -eq 0 ]
+has_mods() { # KVER MODULE...
+	local k=$1 m x
+	shift
+	m=$(mods "$k")
+	for x; do
+		echo "$m" | grep -q "^$x\.ko" || return 1
+	done
+}
 check "standard kernel $KSTD: as9888_core, as9888_i2c and as9888_spi built and installed" \
-	eval 'm=$(mods "$KSTD"); for x in as9888_core as9888_i2c as9888_spi; do echo "$m" | grep -q "^$x\.ko" || exit 1; done'
+	has_mods "$KSTD" as9888_core as9888_i2c as9888_spi
 check "cloud kernel $KCLOUD: no module built or installed" \
 	eval '[ -z "$(mods "$KCLOUD" | grep as9888)" ]'
 check "cloud kernel: the output says which options $KCLOUD lacks" \

@@ -21,10 +21,14 @@
 #     into x86_64 defconfig of the cached 6.1 and 7.2 trees
 #     (scripts/kernel-trees.sh; missing trees fail the check) with the
 #     kernel's merge_config.sh, every option comes out as asked.
+#  4. contrib/buildroot's packages: the same commit as SRCREV, and their
+#     .hash files hold COPYING's sha256 as of it and a tarball hash for it
+#     (computed once with Buildroot's download helper: docs/DECISIONS.md).
 # --set-srcrev REV: first resolve REV (a tag such as v0.1.0, or a commit)
 # and run check 2 on it; when it passes, write it into SRCREV. That is how
 # a release moves the pin (the recipe never pins a commit that has not
-# been checked to configure with its flags).
+# been checked to configure with its flags); check 4 then fails until the
+# Buildroot packages follow.
 # Prints "yocto: N passed, N failed".
 set -uo pipefail
 
@@ -202,6 +206,26 @@ for k in 6.1 7.2; do
 	fragment_ok "$k"
 	result "as9888.cfg merged into $k's x86_64 defconfig: every option as asked" $?
 done
+
+# --- 4. Buildroot's packages pin the same tree ----------------------------------------
+# (their tarball hashes were computed with Buildroot's own download helper,
+# a one-off recorded in docs/DECISIONS.md; COPYING's hash is checked here)
+br_pins_ok() {
+	local mk hash v rc=0 want
+	want=$(git -C "$top" show "$srcrev:COPYING" 2>/dev/null | sha256sum | cut -d' ' -f1)
+	for mk in "$top"/contrib/buildroot/package/*/*.mk; do
+		v=$(sed -n 's/^[A-Z0-9_]*_VERSION = \([0-9a-f]*\)$/\1/p' "$mk")
+		[ "$v" = "$srcrev" ] || { echo "  ${mk#"$top"/}: version ${v:-none}, Yocto's SRCREV $srcrev"; rc=1; }
+		hash=${mk%.mk}.hash
+		grep -q "^sha256  $want  COPYING$" "$hash" ||
+			{ echo "  ${hash#"$top"/}: no sha256 of COPYING as of $srcrev ($want)"; rc=1; }
+		grep -q "^sha256  [0-9a-f]\{64\}  $(basename "${mk%.mk}")-$srcrev-git4.tar.gz$" "$hash" ||
+			{ echo "  ${hash#"$top"/}: no tarball hash for version $srcrev"; rc=1; }
+	done
+	return "$rc"
+}
+br_pins_ok
+result "Buildroot packages: the same commit as SRCREV, COPYING's hash as of it" $?
 
 echo "yocto: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
