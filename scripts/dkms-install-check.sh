@@ -1,5 +1,7 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
+# (the checks are eval'd strings, expanded when they run)
+# shellcheck disable=SC2016
 #
 # dkms-install-check.sh
 #
@@ -25,8 +27,6 @@
 # headers, a few minutes); each run installs into a fresh copy of it.
 # Needs root. Prints "dkms-install: N passed, N failed".
 set -euo pipefail
-# the checks are eval'd strings, expanded when they run
-# shellcheck disable=SC2016
 
 # shellcheck source=scripts/kernel-common.sh
 . "$(dirname "$0")/kernel-common.sh"
