@@ -130,6 +130,42 @@ static int as9888_read_calibbias(struct as9888_chip *chip, int axis, int *val)
 }
 
 /*
+ * Write an axis' offset DAC; with chip->lock held, in the gap. regmap
+ * takes a value into its cache before the bus write, and keeps it when the
+ * write fails or reads back wrong. Then the old value is written back, so
+ * that the cache (which compensates every later sample, and which runtime
+ * resume writes to the chip) and the chip hold the DAC value of the
+ * calibbias kept. When that write fails too, the cache holds it all the
+ * same, but the chip may run with the new one until it is powered again:
+ * that is logged.
+ */
+static int as9888_write_dac(struct as9888_chip *chip, int axis, u8 da)
+{
+	unsigned int reg = AS9888_REG_ADA(axis), old;
+	u8 prev;
+	int ret;
+
+	lockdep_assert_held(&chip->lock);
+
+	/* From the cache: probe wrote the trim */
+	ret = regmap_read(chip->regmap, reg, &old);
+	if (ret)
+		return ret;
+
+	ret = as9888_write_trim(chip, reg, &da, 1);
+	if (!ret)
+		return 0;
+
+	prev = old;
+	if (as9888_write_trim(chip, reg, &prev, 1))
+		dev_err(chip->dev,
+			"offset DAC 0x%02x may hold 0x%02x until the chip is powered again (0x%02x kept)\n",
+			reg, da, prev);
+
+	return ret;
+}
+
+/*
  * The calibbias is realised as the offset DAC value that centres the chip's
  * output (as9888_bias_dac()) and the compensation of the rest; both change
  * together under chip->lock, so every sample is compensated for the DAC it
@@ -154,8 +190,7 @@ static int as9888_write_calibbias(struct as9888_chip *chip, int axis, int bias)
 	scoped_guard(mutex, &chip->lock) {
 		ret = as9888_wait_gap(chip);
 		if (!ret)
-			ret = as9888_write_trim(chip, AS9888_REG_ADA(axis),
-						&da, 1);
+			ret = as9888_write_dac(chip, axis, da);
 		if (!ret)
 			chip->cal.bias[axis] = bias;
 	}

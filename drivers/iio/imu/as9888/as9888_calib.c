@@ -2,8 +2,8 @@
 /*
  * AS9888 calibration arithmetic, integer only.
  *
- * Every formula here is from section 6 of the AS9888 datasheet (the project's
- * spec/AS9888-datasheet.md) with its decisions D1..D11; the fixed-point
+ * Every formula here is from section 6 of the AS9888 datasheet and the
+ * vendor's application note on the on-board function test; the fixed-point
  * formats are described in as9888_calib.h. Inputs are range checked first so
  * that no product can overflow, whatever the caller passes.
  */
@@ -38,7 +38,8 @@
 #define AS9888_DAC_FULL_SCALE		2048
 /*
  * Kote = s9 * 1.5 / dT with dT = dTMPS / 1.6 degC, that is
- * s9 * 12 / (5 * dTMPS); the D4 fallback dT = 35 degC gives s9 * 3 / 70.
+ * s9 * 12 / (5 * dTMPS); the fallback span dT = 35 degC (factory
+ * temperatures unusable) gives s9 * 3 / 70.
  */
 #define AS9888_KOTE_NUM			12
 #define AS9888_KOTE_DEN			5
@@ -59,7 +60,7 @@
  * @num: dividend
  * @den: divisor, must be > 0 (0 is returned otherwise)
  *
- * This is rint() of the exact quotient, as D5 asks for the DAC estimate.
+ * This is rint() of the exact quotient, the rounding of the DAC estimate.
  *
  * Return: the rounded quotient, or 0 when @den is not positive.
  */
@@ -133,7 +134,7 @@ bool as9888_mag_overflow(s16 h)
 EXPORT_SYMBOL_IF_KUNIT(as9888_mag_overflow);
 
 /**
- * as9888_selftest_window_ok() - self-test window of steps 2-17..2-22
+ * as9888_selftest_window_ok() - an axis' magnetometer self-test window
  * @axis: 0 (X), 1 (Y) or 2 (Z)
  * @adj_q8: the adjusted self-test reading of that axis, in 1/256 LSB
  *
@@ -164,7 +165,7 @@ VISIBLE_IF_KUNIT bool as9888_selftest_window_ok(int axis, s32 adj_q8)
 EXPORT_SYMBOL_IF_KUNIT(as9888_selftest_window_ok);
 
 /**
- * as9888_selftest_ok() - self-test judgment of one axis, steps 2-17..2-22
+ * as9888_selftest_ok() - magnetometer self-test judgment of one axis
  * @axis: 0 (X), 1 (Y) or 2 (Z)
  * @h: raw self-test reading of that axis
  * @ehc: the axis' sensitivity adjustment from the EEPROM
@@ -345,7 +346,7 @@ as9888_offset_dac_shift_q16(const struct as9888_axis_trim *trim, s32 ot_q16,
 EXPORT_SYMBOL_IF_KUNIT(as9888_offset_dac_shift_q16);
 
 /**
- * as9888_dac_opt() - the optimal DAC value of step 3-23 (6.6, D5, D6)
+ * as9888_dac_opt() - the optimal offset DAC value (datasheet 6.6)
  * @ga: the gain register value AxGA
  * @da: the DAC register value ADA the offset was measured with
  * @ee_gain: EAxGA[5:0]
@@ -355,8 +356,8 @@ EXPORT_SYMBOL_IF_KUNIT(as9888_offset_dac_shift_q16);
  * lin_opt = dac2lin(ga, da) - rint((ee_gain + 16) / 2048 * Ot_L), clamped
  * to the DAC range.
  *
- * Return: 0, or -ERANGE when lin_opt had to be clamped (D6; @da_opt holds
- * the clamped value).
+ * Return: 0, or -ERANGE when lin_opt had to be clamped (the function test
+ * fails then; @da_opt holds the clamped value).
  */
 int as9888_dac_opt(u8 ga, u8 da, u8 ee_gain, s32 ot_l_q16, u8 *da_opt)
 {
@@ -538,15 +539,15 @@ static void as9888_decode_axis(const u8 *raw, int axis,
 }
 
 /**
- * as9888_kote() - offset temperature slope of one axis (6.5, D4)
+ * as9888_kote() - offset temperature slope of one axis (datasheet 6.5)
  * @dt: the axis' 9-bit signed offset temperature property
  * @et1: TMPS code of the factory room-temperature test
  * @et2: TMPS code of the factory high-temperature test
  * @kote_num: Kote = @kote_num / @kote_den LSB/degC
  * @kote_den: always > 0
  *
- * Return: true when ET1/ET2 could not be used and the span of 35 degC of
- * D4 was taken instead.
+ * Return: true when ET1/ET2 could not be used (invalid, or a span outside
+ * 10..80 degC) and a span of 35 degC was taken instead.
  */
 VISIBLE_IF_KUNIT bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num,
 				  s32 *kote_den)
@@ -571,7 +572,7 @@ VISIBLE_IF_KUNIT bool as9888_kote(s32 dt, u8 et1, u8 et2, s32 *kote_num,
 }
 EXPORT_SYMBOL_IF_KUNIT(as9888_kote);
 
-/* Kote of every axis, with the warnings of D4 and D9 */
+/* Kote of every axis, with the warnings of the fallback span and |Kote| */
 static void as9888_decode_kote(struct as9888_eeprom *ee)
 {
 	u8 et1 = ee->raw[AS9888_EE_ET1], et2 = ee->raw[AS9888_EE_ET2];
@@ -583,7 +584,7 @@ static void as9888_decode_kote(struct as9888_eeprom *ee)
 
 		fallback = as9888_kote(trim->dt, et1, et2, &trim->kote_num,
 				       &trim->kote_den);
-		/* D9: |Kote| > 10.2 LSB/degC is only a warning */
+		/* |Kote| > 10.2 LSB/degC (datasheet note 4b) is a warning */
 		if (abs(trim->kote_num) * 10 > AS9888_KOTE_WARN_X10 * trim->kote_den)
 			ee->warnings |= AS9888_EE_WARN_KOTE_X << axis;
 	}

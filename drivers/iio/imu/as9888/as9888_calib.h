@@ -5,11 +5,10 @@
  * estimation, offset DAC optimisation and the judgments of the vendor's
  * on-board function test.
  *
- * This unit is pure integer arithmetic. It builds in the kernel and, through
- * the small <linux/...> stand-ins under tools/include, in userspace; it calls
- * nothing but 64-bit division helpers and has no undefined behaviour for any
- * value of its inputs. This header declares what the driver uses; the
- * functions only its KUnit test calls are declared when KUnit is enabled.
+ * This unit is pure integer arithmetic: it calls nothing but 64-bit
+ * division helpers and has no undefined behaviour for any value of its
+ * inputs. This header declares what the driver uses; the functions only
+ * its KUnit test calls are declared when KUnit is enabled.
  *
  * Fixed-point formats (the suffix of a name says which one it carries):
  *
@@ -61,7 +60,7 @@
 #define AS9888_TMPS_RT_BASE		136
 #define AS9888_MDEGC_PER_TMPS		625	/* 1 / 1.6 degC */
 
-/* D4: bounds of the factory temperature span and its fallback */
+/* Bounds of the factory temperature span, and the span used outside them */
 #define AS9888_DELTA_T_MIN_MDEGC	10000
 #define AS9888_DELTA_T_MAX_MDEGC	80000
 #define AS9888_DELTA_T_FALLBACK_DEGC	35
@@ -78,13 +77,13 @@
 #define AS9888_Q8_ONE			256
 #define AS9888_MILLI			1000
 
-/* Application note, step 2: self-test windows after sensitivity adjustment */
+/* Magnetometer self-test windows after sensitivity adjustment */
 #define AS9888_SELFTEST_XY_MIN		(-100)
 #define AS9888_SELFTEST_XY_MAX		100
 #define AS9888_SELFTEST_Z_MIN		300
 #define AS9888_SELFTEST_Z_MAX		1000
 
-/* D9: offset temperature slope beyond this (LSB/degC, x10) is a warning */
+/* Offset temperature slope beyond this (LSB/degC, x10) is a warning */
 #define AS9888_KOTE_WARN_X10		102
 
 #define AS9888_Q16_ONE			65536
@@ -107,9 +106,9 @@ enum as9888_ee_error {
 
 /* Conditions worth reporting that do not stop the calibration */
 enum as9888_ee_warning {
-	/* D4: ET1/ET2 invalid or span not 10..80 degC, 35 degC used */
+	/* ET1/ET2 invalid or span not 10..80 degC, 35 degC used */
 	AS9888_EE_WARN_DELTA_T		= BIT(0),
-	/* D9: |Kote| beyond 10.2 LSB/degC on an axis */
+	/* |Kote| beyond 10.2 LSB/degC on an axis */
 	AS9888_EE_WARN_KOTE_X		= BIT(1),
 	AS9888_EE_WARN_KOTE_Y		= BIT(2),
 	AS9888_EE_WARN_KOTE_Z		= BIT(3),
@@ -147,7 +146,7 @@ struct as9888_axis_trim {
  * @ref3:	value for REF3, 0x18 | EREF3[2:0]
  * @osc:	value for OSC
  * @t_rt_mdegc:	factory room-temperature test temperature t_RT
- * @delta_t_mdegc: factory temperature span used for Kote (after D4)
+ * @delta_t_mdegc: factory temperature span used for Kote (or the fallback)
  * @axis:	per-axis data, X, Y, Z
  * @errors:	enum as9888_ee_error bits; non-zero means unusable
  * @warnings:	enum as9888_ee_warning bits

@@ -450,13 +450,16 @@ int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 
 	lockdep_assert_held(&chip->lock);
 
-	/* System sleep: the supplies are, or are about to be, off */
-	if (chip->suspended)
-		return -EBUSY;
-
 	ret = as9888_wait_gap(chip);
 	if (ret)
 		return ret;
+
+	/*
+	 * System sleep: the supplies are, or are about to be, off. Checked
+	 * after the wait, which drops the lock (a halted trigger is idle)
+	 */
+	if (chip->suspended)
+		return -EBUSY;
 
 	ret = as9888_start(chip, mode, men || self_test);
 	if (!ret)
@@ -540,8 +543,10 @@ as9888_get_mount_matrix(const struct iio_dev *indio_dev,
 
 /*
  * Register access for debugging (iio/iio:deviceX/direct_reg_access); it
- * also makes the IIO core create the devices' debugfs directories, the
- * magnetometer's holding selftest_readings. Serialised with the driver's own sequences.
+ * also makes the IIO core create the devices' debugfs directories (the
+ * magnetometer's holds selftest_readings). Under chip->lock, like every
+ * register access sequence of the driver; a write waits for the gap
+ * between two samples of the data-ready trigger, as a trim write does.
  */
 int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
 			      unsigned int writeval, unsigned int *readval)
@@ -554,10 +559,13 @@ int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
 		return ret;
 
 	scoped_guard(mutex, &chip->lock) {
-		if (readval)
+		if (readval) {
 			ret = regmap_read(chip->regmap, reg, readval);
-		else
-			ret = regmap_write(chip->regmap, reg, writeval);
+		} else {
+			ret = as9888_wait_gap(chip);
+			if (!ret)
+				ret = regmap_write(chip->regmap, reg, writeval);
+		}
 	}
 
 	pm_runtime_put_autosuspend(chip->dev);

@@ -2,10 +2,10 @@
 /*
  * ALSEN AS9888: the magnetometer IIO device, "as9888-magn".
  *
- * Magnetometer X/Y/Z and the magnetometer self-test (step 2 of the
- * application note). Only this device makes the chip measure the
- * magnetometer (SLCT2.MEN, t_MAG instead of t_ACC per sample): a client of
- * the accelerometer never pays for it.
+ * Magnetometer X/Y/Z and the magnetometer self-test (the magnetometer
+ * part of the vendor's function test). Only this device makes the chip
+ * measure the magnetometer (SLCT2.MEN, t_MAG instead of t_ACC per
+ * sample): a client of the accelerometer never pays for it.
  *
  * Every reading, read or buffered, carries the calibration userspace
  * writes (calibbias, calibscale: the hard iron and the diagonal of the
@@ -40,7 +40,7 @@
 /**
  * struct as9888_selftest - result of the last magnetometer self-test
  * @done:	a self-test has run
- * @pass:	every judgment of step 2 of the application note passed
+ * @pass:	every judgment of the magnetometer self-test passed
  * @adj_q8:	self-test reading per axis after sensitivity adjustment,
  *		1/256 LSB
  */
@@ -317,7 +317,7 @@ static const struct iio_chan_spec as9888_magn_channels[] = {
 	IIO_CHAN_SOFT_TIMESTAMP(AS9888_SCAN_MAGN_TIMESTAMP),
 };
 
-/* Self-test, step 2 of the application note */
+/* Self-test: the vendor's function test, magnetometer part */
 
 /**
  * as9888_run_selftest() - magnetometer function test
@@ -325,9 +325,8 @@ static const struct iio_chan_spec as9888_magn_channels[] = {
  * @res: the result
  *
  * A normal measurement with the magnetometer on must complete without
- * overflow (steps 2-2..2-13), then a self-test measurement must complete
- * with every axis, after sensitivity adjustment, within its window
- * (steps 2-14..2-23).
+ * overflow, then a self-test measurement must complete with every axis,
+ * after sensitivity adjustment, within its window.
  *
  * Return: 0 when both measurements completed (@res says whether the
  * judgments passed) or a negative error number.

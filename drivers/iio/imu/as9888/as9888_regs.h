@@ -1,9 +1,6 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * AS9888 register map and timing (datasheet sections 2, 3 and 5).
- *
- * Only macros, depending on <linux/bits.h> alone, so that tools outside the
- * kernel can use the same register map.
  */
 #ifndef AS9888_REGS_H
 #define AS9888_REGS_H

@@ -45,6 +45,7 @@
 #include <linux/irq.h>
 #include <linux/jiffies.h>
 #include <linux/ktime.h>
+#include <linux/limits.h>
 #include <linux/math64.h>
 #include <linux/minmax.h>
 #include <linux/mutex.h>
@@ -162,7 +163,8 @@ int as9888_read_samp_freq(struct iio_dev *indio_dev, int *val)
 /*
  * A new rate counts from the device's next sample on; one due later than
  * a new, shorter period from now comes sooner. The other device keeps its
- * rate.
+ * rate. A buffer running on another trigger runs at that trigger's rate:
+ * a write there would change nothing, and fails.
  */
 int as9888_write_samp_freq(struct iio_dev *indio_dev, int freq)
 {
@@ -171,6 +173,9 @@ int as9888_write_samp_freq(struct iio_dev *indio_dev, int freq)
 	enum as9888_sensor_id id = sensor->desc->id;
 	unsigned int i, n;
 	ktime_t soonest;
+
+	if (iio_buffer_enabled(indio_dev) && !as9888_on_drdy_trigger(indio_dev))
+		return -EBUSY;
 
 	guard(mutex)(&chip->lock);
 
@@ -210,29 +215,32 @@ static void as9888_trig_gap(struct as9888_chip *chip)
 
 /*
  * Start the sample due at @slot, for every device whose next sample is due
- * by then, or by now when the sample is late, or within half its period
- * of that (so that two devices' schedules fall into step instead of each
- * taking the chip on its own). With chip->lock held and the trigger IDLE.
+ * by then, or by now when the sample is late, or within half the shortest
+ * period of the trigger's devices after that: a slower device's sample
+ * joins the faster device's nearest one, so that the two schedules fall
+ * into step instead of each taking the chip on its own, but it is never
+ * taken a whole sample of the faster device early. Each device's next
+ * sample is due a period after this one was due, not after @slot: taking
+ * a sample early or late moves it, not the device's rate. With chip->lock
+ * held and the trigger IDLE.
  */
 static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 {
 	ktime_t by = max(slot, ktime_get());
+	u64 period, early = U64_MAX;
 	unsigned long take = 0;
 	unsigned int id;
 	ktime_t now;
-	u64 period;
 	int ret;
 
 	lockdep_assert_held(&chip->lock);
 
-	for (id = 0; id < AS9888_SENSORS; id++) {
-		if (!(chip->trig_users & BIT(id)))
-			continue;
-		period = as9888_trig_period_ns(chip, id);
-		if (ktime_before(chip->trig_due[id],
-				 ktime_add_ns(by, period / 2)))
+	for_each_set_bit(id, &chip->trig_users, AS9888_SENSORS)
+		early = min(early, as9888_trig_period_ns(chip, id) / 2);
+
+	for_each_set_bit(id, &chip->trig_users, AS9888_SENSORS)
+		if (ktime_before(chip->trig_due[id], ktime_add_ns(by, early)))
 			take |= BIT(id);
-	}
 
 	/* Before the MS write: INT1 must find the sample MEASURING */
 	atomic_set(&chip->trig_state, AS9888_TRIG_MEASURING);
@@ -249,11 +257,14 @@ static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 	mod_delayed_work(system_power_efficient_wq, &chip->trig_wd,
 			 msecs_to_jiffies(AS9888_TRIG_WD_MS));
 
-	/* The next ones: a period on; a whole period behind, from now */
+	/*
+	 * The next ones: a period after this one was due; more than a whole
+	 * period behind (the trigger was held up), from now
+	 */
 	now = ktime_get();
 	for_each_set_bit(id, &take, AS9888_SENSORS) {
 		period = as9888_trig_period_ns(chip, id);
-		chip->trig_due[id] = ktime_add_ns(slot, period);
+		chip->trig_due[id] = ktime_add_ns(chip->trig_due[id], period);
 		if (ktime_before(ktime_add_ns(chip->trig_due[id], period), now))
 			chip->trig_due[id] = now;
 	}
@@ -273,6 +284,22 @@ static ktime_t as9888_trig_slot(const struct as9888_chip *chip)
 			slot = chip->trig_due[id];
 
 	return slot;
+}
+
+/*
+ * When the trigger's next sample is not due yet, set the hrtimer for it
+ * and return true; false when it is due now (@slot says when it was due).
+ * With chip->lock held and the trigger's users set.
+ */
+static bool as9888_trig_arm(struct as9888_chip *chip, ktime_t *slot)
+{
+	*slot = as9888_trig_slot(chip);
+	if (!ktime_after(*slot, ktime_get()))
+		return false;
+
+	hrtimer_start(&chip->trig_timer, *slot, HRTIMER_MODE_ABS);
+
+	return true;
 }
 
 /*
@@ -309,14 +336,8 @@ static int as9888_trig_next(struct as9888_chip *chip)
 	lockdep_assert_held(&chip->lock);
 
 	chip->trig_retry = false;
-	if (!as9888_trig_may_start(chip))
+	if (!as9888_trig_may_start(chip) || as9888_trig_arm(chip, &slot))
 		return 0;
-
-	slot = as9888_trig_slot(chip);
-	if (ktime_after(slot, ktime_get())) {
-		hrtimer_start(&chip->trig_timer, slot, HRTIMER_MODE_ABS);
-		return 0;
-	}
 
 	for (i = 0; i < AS9888_START_RETRIES; i++) {
 		ret = as9888_trig_measure(chip, slot);
@@ -351,13 +372,7 @@ void as9888_trig_kick(struct as9888_chip *chip)
 
 	lockdep_assert_held(&chip->lock);
 
-	if (!as9888_trig_may_start(chip))
-		return;
-
-	slot = as9888_trig_slot(chip);
-	if (ktime_after(slot, ktime_get()))
-		hrtimer_start(&chip->trig_timer, slot, HRTIMER_MODE_ABS);
-	else
+	if (as9888_trig_may_start(chip) && !as9888_trig_arm(chip, &slot))
 		queue_work(system_highpri_wq, &chip->trig_work);
 }
 
@@ -415,6 +430,8 @@ static void as9888_trig_watchdog(struct work_struct *work)
 		dev_warn_ratelimited(chip->dev,
 				     "data-ready trigger: no %s edge %u ms after a sample started, restarting\n",
 				     chip->int_pin->name, AS9888_TRIG_WD_MS);
+		/* Only the edge may be lost: the next sample may have DOR */
+		chip->sample_skipped = true;
 		as9888_power_down(chip);
 		as9888_trig_gap(chip);
 	} else if (!chip->trig_retry) {
