@@ -31,7 +31,7 @@ static bool warn_drift(const struct magn_session_result *res, bool warned,
 	bool drifting = res->fit.status == MAGCAL_INCONSISTENT;
 
 	if (drifting && !warned && progress) {
-		fprintf(progress, "the field is changing (a magnet or steel moving nearby?): keep turning, away from it; what it changed is left out\n");
+		fprintf(progress, "the field is changing (a magnet or steel moving nearby?): move away from it and keep turning; what it changed is replaced as you cover its directions again\n");
 		fflush(progress);
 	}
 	return drifting;

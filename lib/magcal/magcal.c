@@ -27,10 +27,8 @@
  *  6. Consistency in time (before the verdict): the residuals and the dip
  *     of the samples used, in the order they were kept, must not drift
  *     (means over DRIFT_WINDOW successive samples against the median,
- *     beyond the noise between neighbours); a fit that drifted is
- *     tried again without the stretches that drifted (while they are a
- *     minority): docs/DECISIONS.md, "Compass v2: the store, the gate,
- *     the sweep".
+ *     beyond the noise between neighbours): docs/DECISIONS.md, "Compass
+ *     v2: the store and the gate".
  * The store (magcal_add): see store_victim().
  */
 
@@ -46,7 +44,6 @@
 #define LM_TOL			1e-12
 #define RANSAC_TRIES		80
 #define RANSAC_TOL		0.15	/* of the radius */
-#define RANSAC_DRAWS		20	/* draws per sample picked, at most */
 /* candidate radii: the plausible field, widened by the soft iron */
 #define RANSAC_RADIUS_SLACK	0.7
 #define ROBUST_ROUNDS		8
@@ -61,8 +58,6 @@
 /* consistency in time: means over this many successive samples */
 #define DRIFT_WINDOW		12
 #define DRIFT_SIGMAS		4.0
-/* fits tried again without the stretches that drifted, at most */
-#define TIME_ROUNDS		3
 /* the largest turn of the magnetometer against gravity taken out, deg */
 #define MAX_TURN_DEG		5.0
 
@@ -623,13 +618,13 @@ static double abs_quantile(const struct magcal_session *s, const bool *use,
 /* Flag the samples within @limit uT; returns whether the set changed */
 static bool select_within(const struct magcal_session *s,
 			  const struct magcal_result *r, double limit,
-			  const bool *allowed, bool *use)
+			  bool *use)
 {
 	bool changed = false;
 	unsigned int i;
 
 	for (i = 0; i < s->n; i++) {
-		bool in = allowed[i] && fabs(residual_ut(s, i, r)) <= limit;
+		bool in = fabs(residual_ut(s, i, r)) <= limit;
 
 		changed |= in != use[i];
 		use[i] = in;
@@ -646,16 +641,14 @@ static unsigned int draw(unsigned long long *state, unsigned int n)
 	return (unsigned int)(*state % n);
 }
 
-/* Flag the allowed samples within RANSAC_TOL of the sphere (c, r) */
+/* Flag the samples within RANSAC_TOL of the sphere (c, r); count them */
 static unsigned int sphere_inliers(const struct magcal_session *s,
-				   const double c[3], double r,
-				   const bool *allowed, bool *use)
+				   const double c[3], double r, bool *use)
 {
 	unsigned int i, cnt = 0;
 
 	for (i = 0; i < s->n; i++) {
-		bool in = allowed[i] &&
-			  fabs(dist3(s->s[i].m, c) - r) <= RANSAC_TOL * r;
+		bool in = fabs(dist3(s->s[i].m, c) - r) <= RANSAC_TOL * r;
 
 		if (use)
 			use[i] = in;
@@ -665,29 +658,22 @@ static unsigned int sphere_inliers(const struct magcal_session *s,
 }
 
 /* The first sample set: the inliers of the best of RANSAC_TRIES spheres */
-static void ransac_start(const struct magcal_session *s, const bool *allowed,
-			 bool *use)
+static void ransac_start(const struct magcal_session *s, bool *use)
 {
 	unsigned long long state = 0x9e3779b97f4a7c15ULL ^ s->n;
 	bool pick[MAGCAL_MAX_SAMPLES];
 	double c[3], r, best_c[3] = { 0 }, best_r = 0;
-	unsigned int t, k, i, got, best = 0, cnt;
+	unsigned int t, k, best = 0, cnt;
 
 	for (t = 0; t < RANSAC_TRIES; t++) {
 		memset(pick, 0, s->n * sizeof(pick[0]));
-		/* four allowed samples (a draw not allowed is drawn again) */
-		for (k = 0, got = 0; got < 4 && k < 4 * RANSAC_DRAWS; k++) {
-			i = draw(&state, s->n);
-			if (allowed[i]) {
-				pick[i] = true;
-				got++;
-			}
-		}
+		for (k = 0; k < 4; k++)
+			pick[draw(&state, s->n)] = true;
 		if (!sphere_fit(s, pick, c, &r) ||
 		    r < RANSAC_RADIUS_SLACK * s->cfg.field_min_ut ||
 		    r > s->cfg.field_max_ut / RANSAC_RADIUS_SLACK)
 			continue;
-		cnt = sphere_inliers(s, c, r, allowed, NULL);
+		cnt = sphere_inliers(s, c, r, NULL);
 		if (cnt > best) {
 			best = cnt;
 			memcpy(best_c, c, sizeof(c));
@@ -695,28 +681,29 @@ static void ransac_start(const struct magcal_session *s, const bool *allowed,
 		}
 	}
 	if (best >= 10) {
-		sphere_inliers(s, best_c, best_r, allowed, use);
+		sphere_inliers(s, best_c, best_r, use);
 		return;
 	}
 	/* no plausible sphere: fit them all, the verdict will say why */
-	memcpy(use, allowed, s->n * sizeof(use[0]));
+	for (t = 0; t < s->n; t++)
+		use[t] = true;
 }
 
 /* Rounds of fit and selection; false when a fit failed */
-static bool robust_fit(const struct magcal_session *s, const bool *allowed,
-		       bool *use, struct fit *f, struct magcal_result *r)
+static bool robust_fit(const struct magcal_session *s, bool *use,
+		       struct fit *f, struct magcal_result *r)
 {
 	double limit;
 	int round;
 
-	ransac_start(s, allowed, use);
+	ransac_start(s, use);
 	for (round = 0; round < ROBUST_ROUNDS; round++) {
 		if (!fit_used(s, use, f) || !fit_result(f, r))
 			return false;
 		limit = MAD_TO_SIGMA * ROBUST_SIGMAS *
 			abs_quantile(s, use, r, 0.5);
 		limit = fmax(limit, s->cfg.outlier_ut);
-		if (!select_within(s, r, limit, allowed, use))
+		if (!select_within(s, r, limit, use))
 			return true;
 	}
 	return fit_used(s, use, f) && fit_result(f, r);
@@ -782,7 +769,6 @@ static double uncertainty_deg(const struct magcal_session *s, const bool *use,
 /* A sample's index and what is judged of it, in the order they were kept */
 struct timed {
 	unsigned long long seq;
-	unsigned int idx;	/* the sample's place in the store */
 	double v;
 };
 
@@ -802,12 +788,11 @@ static int cmp_timed(const void *a, const void *b)
  * changed for a while (a magnet passing slowly) moves the means of the
  * samples of that while together; noise averages out.
  */
-static double drift(struct timed *t, unsigned int n, double limit,
-		    bool *drifting)
+static double drift(struct timed *t, unsigned int n)
 {
 	static const unsigned int windows[] = { DRIFT_WINDOW, 3 * DRIFT_WINDOW };
 	double d[MAGCAL_MAX_SAMPLES], med, sigma, sum, worst = 0, dev;
-	unsigned int i, j, k, w;
+	unsigned int i, k, w;
 
 	if (n < 2 * DRIFT_WINDOW)
 		return 0;
@@ -833,10 +818,6 @@ static double drift(struct timed *t, unsigned int n, double limit,
 				continue;
 			dev = fabs(sum) / w - DRIFT_SIGMAS * sigma / sqrt(w);
 			worst = fmax(worst, dev);
-			/* a stretch beyond half the limit: its samples flagged */
-			for (j = i + 1 - w; drifting && dev > limit / 2 &&
-			     j <= i; j++)
-				drifting[t[j].idx] = true;
 		}
 	}
 	return worst;
@@ -857,7 +838,7 @@ static double dip_of(const double c[3], const double g[3])
  * samples used. Both are constant while only the device turns.
  */
 static void consistency(const struct magcal_session *s, const bool *use,
-			struct magcal_result *r, bool *drifting)
+			struct magcal_result *r)
 {
 	struct timed e[MAGCAL_MAX_SAMPLES], dip[MAGCAL_MAX_SAMPLES];
 	double a[NPARAM][NPARAM] = { { 0 } }, rhs[NPARAM] = { 0 }, x[NPARAM];
@@ -870,7 +851,6 @@ static void consistency(const struct magcal_session *s, const bool *use,
 		if (!use[i])
 			continue;
 		e[ne].seq = s->s[i].seq;
-		e[ne].idx = i;
 		e[ne++].v = residual_ut(s, i, r);
 		magcal_apply(r, s->s[i].m, c);
 		if (!s->s[i].has_g || !(norm3(s->s[i].g) > 0) ||
@@ -895,7 +875,6 @@ static void consistency(const struct magcal_session *s, const bool *use,
 				a[j][k] += row[j] * row[k];
 			rhs[j] += row[j] * gp[nd];
 		}
-		dip[nd].idx = i;
 		dip[nd++].seq = s->s[i].seq;
 	}
 	/*
@@ -914,8 +893,8 @@ static void consistency(const struct magcal_session *s, const bool *use,
 
 		dip[i].v = asin(fmax(-1, fmin(1, -v))) * DEG_PER_RAD;
 	}
-	r->drift_ut = drift(e, ne, s->cfg.max_drift_ut, drifting);
-	r->dip_drift_deg = drift(dip, nd, s->cfg.max_dip_drift_deg, drifting);
+	r->drift_ut = drift(e, ne);
+	r->dip_drift_deg = drift(dip, nd);
 }
 
 static void quality(const struct magcal_session *s, const bool *use,
@@ -979,11 +958,9 @@ static void apply_reference(const struct magcal_config *cfg,
 
 int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 {
-	bool use[MAGCAL_MAX_SAMPLES], allowed[MAGCAL_MAX_SAMPLES];
-	bool drifting[MAGCAL_MAX_SAMPLES];
-	unsigned int i, round, out = 0, more;
-	struct magcal_result first;
+	bool use[MAGCAL_MAX_SAMPLES];
 	struct fit f;
+	unsigned int i;
 
 	if (!s || !r)
 		return -EINVAL;
@@ -991,45 +968,20 @@ int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 	r->w[0][0] = r->w[1][1] = r->w[2][2] = 1;
 	r->scale = 1;
 	for (i = 0; i < s->n; i++)
-		use[i] = allowed[i] = true;
+		use[i] = true;
 	if (s->n < 10) {
 		r->used = s->n;
 		r->status = MAGCAL_NO_COVERAGE;
 		return 0;
 	}
-	/*
-	 * A fit whose field drifted in time is tried again without the
-	 * stretches that drifted (a magnet that came and went), while they
-	 * are a minority of the samples. When that does not give a good fit
-	 * either, the verdict is the first one's: the field changed (what is
-	 * left may be too little, but the drift is why)
-	 */
-	for (round = 0; ; round++) {
-		if (!robust_fit(s, allowed, use, &f, r)) {
-			r->status = MAGCAL_SINGULAR;
-			return 0;
-		}
-		quality(s, use, r);
-		memset(drifting, 0, s->n * sizeof(drifting[0]));
-		consistency(s, use, r, drifting);
-		r->uncertainty_deg = uncertainty_deg(s, use, &f, r);
-		r->status = verdict(&s->cfg, r);
-		if (!round)
-			first = *r;
-		if (r->status != MAGCAL_INCONSISTENT || round == TIME_ROUNDS)
-			break;
-		for (i = 0, more = 0; i < s->n; i++)
-			more += drifting[i] && allowed[i];
-		if (!more || 2 * (out + more) > s->n)
-			break;
-		for (i = 0; i < s->n; i++)
-			allowed[i] &= !drifting[i];
-		out += more;
+	if (!robust_fit(s, use, &f, r)) {
+		r->status = MAGCAL_SINGULAR;
+		return 0;
 	}
-	if (round && r->status != MAGCAL_OK)
-		*r = first;
-	else
-		r->drifted = out;
+	quality(s, use, r);
+	consistency(s, use, r);
+	r->uncertainty_deg = uncertainty_deg(s, use, &f, r);
+	r->status = verdict(&s->cfg, r);
 	if (s->cfg.reference_field_ut > 0 && r->fitted_field_ut > 0)
 		apply_reference(&s->cfg, r);
 	return 0;

@@ -21,9 +21,7 @@
  * unobserved, with quality figures and a status. A fit must also be
  * consistent in time: a field whose magnitude or dip drifts along the
  * samples (a weak magnet passing slowly, which the fit would absorb into
- * a wrong hard iron) is fitted again without the stretches of time that
- * drifted while they are a minority, and refused (MAGCAL_INCONSISTENT)
- * when that does not give a good fit either.
+ * a wrong hard iron) is refused (MAGCAL_INCONSISTENT).
  *
  * The scale of W is not observable (a sphere of radius kF reads the same
  * as one of F): W is normalised to det(W) = 1, so an isotropic gain of the
@@ -149,10 +147,6 @@ struct magcal_config {
  *		makes the dip constant over the orientations (an asymmetric
  *		soft iron), degrees, at most 5 (0: none found, or none that
  *		small); judged by the gate, not applied: @w stays symmetric
- * @drifted:	samples left out because the field drifted while they were
- *		taken (stretches of time whose residuals or dip drifted
- *		beyond half the limits: a magnet that came and went), counted
- *		in @rejected too
  */
 struct magcal_result {
 	enum magcal_status status;
@@ -171,7 +165,6 @@ struct magcal_result {
 	double drift_ut;
 	double dip_drift_deg;
 	double turn_deg;
-	unsigned int drifted;
 };
 
 struct magcal_session;
