@@ -99,6 +99,12 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 		if (res->solved && res->fit.status == MAGCAL_OK)
 			ret = 0;
 	}
+	if (!ret && progress &&
+	    res->fit.turn_deg >= MAGN_SESSION_TURN_NOTE_DEG) {
+		fprintf(progress, "the magnetometer reads the field turned by %.1f deg against the accelerometer (an asymmetric soft iron): not corrected, headings can be off by about as much\n",
+			res->fit.turn_deg);
+		fflush(progress);
+	}
 	res->coverage = magcal_progress(fit);
 	res->elapsed_ns = magn_source_now_ns(src) - start;
 	magcal_free(fit);

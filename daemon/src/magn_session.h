@@ -25,6 +25,12 @@
  * At the timeout an MAGCAL_OK fit below it is still taken.
  */
 #define MAGN_SESSION_COVERAGE		0.6
+/*
+ * A fit whose magnetometer is turned by this much against the
+ * accelerometer (magcal_result turn_deg: an asymmetric soft iron, which
+ * the record cannot hold) is stored with a note saying so
+ */
+#define MAGN_SESSION_TURN_NOTE_DEG	0.5
 /* Progress is printed after every this many newly kept samples */
 #define MAGN_SESSION_PROGRESS_EVERY	20
 

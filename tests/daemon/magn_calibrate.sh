@@ -19,7 +19,7 @@ export ASAN_OPTIONS=detect_leaks=1
 trap 'rm -rf "$work"' EXIT
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
-tap_plan 23
+tap_plan 24
 TAP_SHOW="$work/err $work/out"
 mkdir -p "$work/sys"
 export AS9888_SYSFS=$work/sys
@@ -43,6 +43,7 @@ UNIT
 run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --record "$rec"
 check "a tumbling board: exit 0, progress shown, stored" eval '[ $rc -eq 0 ] &&
 	says "^coverage .*%, [0-9]* samples kept" out && says "^Stored in" out'
+cp "$work/out" "$work/first.out"
 check "the record is format 2, the factory record kept as previous" eval '
 	grep -q "^format = as9888-calibration 2$" "$rec" && cmp -s "$rec.previous" "$work/factory"'
 check "hard iron within 1 uT and soft iron within 1% of the unit's truth" \
@@ -154,6 +155,19 @@ run magn-calibrate --sim-clock virtual --unit "$work/slower.unit" --timeout 15 -
 check "a slow magnet through the whole session: exit 1, the field changed, record unchanged" eval '
 	[ $rc -eq 1 ] && says "the field changed during the session" err &&
 	cmp -s "$rec" "$work/before"'
+
+# the board's soft iron turned by 2 deg about Z (S' = Rz S: asymmetric,
+# which the record's symmetric W cannot hold): stored, and the turn seen
+# against the accelerometer is said (the tumbling board above says none)
+sed 's/^soft_iron = .*/soft_iron = 1.048313 -0.003173 -0.021384 0.066626 0.950468 0.039278 -0.020000 0.040000 1.020000/' \
+	"$work/board.unit" >"$work/turned.unit"
+grep -q "turned by" "$work/first.out" && first_turn=1 || first_turn=0
+run magn-calibrate --sim-clock virtual --unit "$work/turned.unit" --record "$rec"
+check "a soft iron turned by 2 deg: stored, the turn of 1.5..2.5 deg said" eval '
+	[ $rc -eq 0 ] && [ $first_turn -eq 0 ] && python3 -c "
+import re, sys
+m = re.search(r\"field turned by ([0-9.]+) deg against the accelerometer\", open(sys.argv[1]).read())
+assert m and 1.5 <= float(m.group(1)) <= 2.5, m" "$work/out"'
 
 # through the driver (a sysfs tree like its own, readings that never
 # change: a device lying still), in real time
