@@ -9,7 +9,7 @@
 #include <time.h>
 
 #include "commands.h"
-#include "iio.h"
+#include "iio_cal.h"
 #include "magn_session.h"
 #include "magn_show.h"
 #include "magn_source.h"

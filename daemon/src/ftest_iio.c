@@ -61,7 +61,7 @@
 
 #include "accel_raw.h"
 #include "ftest_internal.h"
-#include "iio.h"
+#include "iio_cal.h"
 #include "iio_busy.h"
 #include "iio_scan.h"
 #include "iio_value.h"

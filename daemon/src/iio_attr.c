@@ -5,8 +5,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "iio.h"
 #include "iio_attr.h"
+#include "iio_root.h"
 
 int iio_attr_open(struct iio_attr *a, int dfd, const char *name,
 		  bool writable)

@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "commands.h"
-#include "iio.h"
+#include "iio_cal.h"
 #include "lock_file.h"
 #include "magcal.h"
 #include "magn_cal.h"

@@ -15,7 +15,7 @@
 #include "backend_raw.h"
 #include "backend_sim.h"
 #include "ftest.h"
-#include "iio.h"
+#include "iio_cal.h"
 #include "lock_file.h"
 #include "record_pair.h"
 #include "remedy.h"

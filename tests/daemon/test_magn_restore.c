@@ -23,7 +23,7 @@
 #include <cmocka.h>
 
 #include "fake_sysfs.h"
-#include "iio.h"
+#include "iio_cal.h"
 #include "magn_cal.h"
 #include "magn_iio.h"
 #include "magn_example.h"

@@ -21,7 +21,7 @@
 #include <cmocka.h>
 
 #include "fake_sysfs.h"
-#include "iio.h"
+#include "iio_cal.h"
 #include "record.h"
 #include "session.h"
 #include "uevent.h"
