@@ -50,6 +50,20 @@ def check(what, ok, diag=""):
     sys.stdout.flush()
 
 
+def recv_all(s):
+    """What the peer sends on S until it hangs up (or S times out)"""
+    out = b""
+    try:
+        while True:
+            b = s.recv(4096)
+            if not b:
+                break
+            out += b
+    except OSError:
+        pass
+    return out
+
+
 def ask(sock, line, uid=0, gid=0, groups=(), timeout=120):
     """Send LINE as UID; the reply text (or "" when the connection failed)"""
     r, w = os.pipe()
@@ -64,13 +78,7 @@ def ask(sock, line, uid=0, gid=0, groups=(), timeout=120):
             s.settimeout(timeout)
             s.connect(sock)
             s.sendall(line.encode() + b"\n")
-            out = b""
-            while True:
-                b = s.recv(4096)
-                if not b:
-                    break
-                out += b
-            os.write(w, out)
+            os.write(w, recv_all(s))
         except OSError as e:
             os.write(w, ("client error: %s" % e).encode())
         os._exit(0)
@@ -199,14 +207,7 @@ def main():
                 deadline = time.monotonic() + 30
                 for s in conns:
                     s.settimeout(max(0.01, deadline - time.monotonic()))
-                    try:
-                        while True:
-                            b = s.recv(4096)
-                            if not b:
-                                break
-                            got += b
-                    except OSError:
-                        pass
+                    got += recv_all(s)
                 os.write(w, got)
                 os._exit(0)
             os.close(w)

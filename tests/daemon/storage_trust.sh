@@ -143,16 +143,20 @@ check "a sound state directory: recalibrate works" test "$rc" -eq 0
 # is root's alone (0600); one left readable (0644, by an older version) is
 # made private by the next command. "nobody" then tries to hold it.
 as_nobody() { setpriv --reuid="$(id -u nobody)" --regid="$(id -g nobody)" --clear-groups "$@"; }
+# holder_says WORD: wait (30 s at most) until $holder wrote WORD or ended
+holder_says() {
+	for _ in $(seq 300); do
+		grep -q "$1" "$work/holder" 2>/dev/null && return
+		kill -0 "$holder" 2>/dev/null || return
+		sleep 0.1
+	done
+}
 # hold_lock: nobody tries flock on the lock; "held" in $work/holder if it got it
 hold_lock() {
 	rm -f "$work/holder"
 	as_nobody flock -x -n "$rec.lock" sh -c 'echo held; exec sleep 120' >"$work/holder" 2>&1 &
 	holder=$!
-	for _ in $(seq 300); do
-		grep -q held "$work/holder" 2>/dev/null && return
-		kill -0 "$holder" 2>/dev/null || return
-		sleep 0.1
-	done
+	holder_says held
 }
 let_go() { kill "$holder" 2>/dev/null; wait "$holder" 2>/dev/null; }
 check "the record's lock is private to root (mode 0600)" \
@@ -184,19 +188,11 @@ rm -f "$work/holder" "$work/go"
 as_nobody sh -c 'exec 3<"$1"; echo opened; while [ ! -e "$2" ]; do sleep 0.1; done
 	flock -x -n 3 && echo held; exec sleep 120' sh "$rec.lock" "$work/go" >"$work/holder" 2>&1 &
 holder=$!
-for _ in $(seq 300); do
-	grep -q opened "$work/holder" 2>/dev/null && break
-	kill -0 "$holder" 2>/dev/null || break
-	sleep 0.1
-done
+holder_says opened
 # shellcheck disable=SC2086
 run recalibrate $sim --samples 12 --record "$rec" --lock-timeout 5
 touch "$work/go"
-for _ in $(seq 300); do
-	grep -q held "$work/holder" 2>/dev/null && break
-	kill -0 "$holder" 2>/dev/null || break
-	sleep 0.1
-done
+holder_says held
 check "a lock opened by another user while it was 0644: replaced by a new private file" \
 	eval '[ $rc -eq 0 ] && grep -q opened "$work/holder" && [ "$(stat -c %i "$rec.lock")" != "$ino_before" ] && [ "$(stat -c %a "$rec.lock")" = 600 ]'
 # shellcheck disable=SC2086
