@@ -262,11 +262,14 @@ static void report(struct as9888_hal *h, struct sensor *s, const struct as9888_e
 
 /*
  * Whether a sample at @ts is one of @s's: the samples are taken at the
- * fastest rate a sensor of the device asks; a slower one gets those
- * nearest its own period (@half: half the device's period)
+ * fastest rate a sensor of the device asks (@dev_period, 0: the trigger's
+ * own), which that sensor gets whole; a slower one gets those nearest
+ * its own period (@half: half the time since the device's last sample)
  */
-static bool due(struct sensor *s, int64_t ts, int64_t half)
+static bool due(struct sensor *s, int64_t ts, int64_t half, int64_t dev_period)
 {
+	if (dev_period && s->period_ns <= dev_period + dev_period / 1000)
+		return true;
 	if (s->next_due && ts < s->next_due - half)
 		return false;
 	/* a gap (a restart, a stall) starts the schedule again */
@@ -301,7 +304,8 @@ static void check_record(struct as9888_hal *h, bool force)
 		set_error(h, err);
 }
 
-static void accel_sample(struct as9888_hal *h, const uint8_t *sample, int64_t half)
+static void accel_sample(struct as9888_hal *h, const uint8_t *sample, int64_t half,
+			 int64_t dev_period)
 {
 	struct sensor *s = sensor_of(h, AS9888_HANDLE_ACCEL);
 	struct as9888_event e = { .handle = AS9888_HANDLE_ACCEL,
@@ -313,7 +317,7 @@ static void accel_sample(struct as9888_hal *h, const uint8_t *sample, int64_t ha
 	saturated = hal_layout_decode(&h->accel.layout, sample, h->accel_raw, v,
 				      &e.timestamp_ns);
 	h->accel_raw_at = now_ns();
-	if (!s->active || !due(s, e.timestamp_ns, half))
+	if (!s->active || !due(s, e.timestamp_ns, half, dev_period))
 		return;
 	hal_mat_apply(h->accel.layout.mount, v, d);
 	for (i = 0; i < 3; i++)
@@ -322,7 +326,8 @@ static void accel_sample(struct as9888_hal *h, const uint8_t *sample, int64_t ha
 	report(h, s, &e);
 }
 
-static void magn_sample(struct as9888_hal *h, const uint8_t *sample, int64_t half)
+static void magn_sample(struct as9888_hal *h, const uint8_t *sample, int64_t half,
+			int64_t dev_period)
 {
 	struct sensor *cal = sensor_of(h, AS9888_HANDLE_MAGN);
 	struct sensor *uncal = sensor_of(h, AS9888_HANDLE_MAGN_UNCAL);
@@ -348,7 +353,7 @@ static void magn_sample(struct as9888_hal *h, const uint8_t *sample, int64_t hal
 		 h->have_cal ? AS9888_STATUS_ACCURACY_HIGH : AS9888_STATUS_ACCURACY_LOW;
 	e.timestamp_ns = ts;
 	e.status = status;
-	if (cal->active && due(cal, ts, half)) {
+	if (cal->active && due(cal, ts, half, dev_period)) {
 		hal_mat_apply(h->magn.layout.mount, f, d);
 		e.handle = AS9888_HANDLE_MAGN;
 		e.type = AS9888_TYPE_MAGNETIC_FIELD;
@@ -356,7 +361,7 @@ static void magn_sample(struct as9888_hal *h, const uint8_t *sample, int64_t hal
 			e.v[i] = (float)d[i];
 		report(h, cal, &e);
 	}
-	if (uncal->active && due(uncal, ts, half)) {
+	if (uncal->active && due(uncal, ts, half, dev_period)) {
 		/* uncalibrated - bias = calibrated, in either frame */
 		for (i = 0; i < 3; i++)
 			f[i] += b[i];
@@ -376,6 +381,7 @@ static void magn_sample(struct as9888_hal *h, const uint8_t *sample, int64_t hal
 static bool read_stream(struct as9888_hal *h, struct hal_stream *s, int dev)
 {
 	uint8_t buf[HAL_STREAM_BATCH * 64];
+	int64_t dev_period = s->hz ? NSEC_PER_SEC / s->hz : 0;
 	char msg[300];
 	int n, i;
 
@@ -394,9 +400,9 @@ static bool read_stream(struct as9888_hal *h, struct hal_stream *s, int dev)
 
 			h->prev_ts[dev] = ts;
 			if (dev)
-				magn_sample(h, sample, half);
+				magn_sample(h, sample, half, dev_period);
 			else
-				accel_sample(h, sample, half);
+				accel_sample(h, sample, half, dev_period);
 		}
 	} while (n == HAL_STREAM_BATCH);
 	return true;
