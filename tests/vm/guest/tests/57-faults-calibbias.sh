@@ -9,7 +9,7 @@
 # chip may not). regmap caches a value before its bus write: before the
 # fix the cache kept the new DAC value while the calibbias and the chip
 # kept the old ones, and _raw was off by the DAC step.
-plan 15
+plan 17
 set_unit "temperature = 23.75" "offset = 40 -25 60" "noise = 0"
 wait_dev 5
 # the device stays powered: a runtime resume would spend the failures on
@@ -27,7 +27,7 @@ for N in 1 2; do
 	W="calibbias write, $N transfer(s) failing"
 	echo $N > $SIM/fail_next
 	check_not "$W: the write fails" \
-		sh -c "echo $((X0 + 600)) > $DEV/in_accel_x_calibbias"
+		sh -c "echo $((X0 + 2000)) > $DEV/in_accel_x_calibbias"
 	eq "$W: every failure spent on it" "$(cat $SIM/fail_next)" 0
 	echo 0 > $SIM/fail_next
 	eq "$W: calibbias reads the old values" "$(cal_get)" "$CAL0"
@@ -39,7 +39,11 @@ check "the failed write back was logged" \
 	kmsg_since 57-calibbias 'may hold'
 # the bus works again: the same write goes through and moves x
 check "calibbias write on a working bus" \
-	sh -c "echo $((X0 + 600)) > $DEV/in_accel_x_calibbias"
-eq "calibbias reads the new x" "$(cal_get | cut -d' ' -f1)" $((X0 + 600))
+	sh -c "echo $((X0 + 2000)) > $DEV/in_accel_x_calibbias"
+eq "calibbias reads the new x" "$(cal_get | cut -d' ' -f1)" $((X0 + 2000))
+# (the test's premise: this write changes the DAC, so a failed one that
+# left the new value in the cache would show above)
+check_not "the new x moved the DAC" test "$(dac_get)" = "$DAC0"
+eq "the chip holds the DAC values of the cache" "$(chip_dac)" "$(dac_get)"
 put_cal $CAL0
 echo auto > "$(pm_dir)/control"
