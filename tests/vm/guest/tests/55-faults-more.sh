@@ -33,6 +33,8 @@ eq "no_drdy: selftest write fails" "$(timed_write 1 $MDEV/selftest)" ERR
 
 set_unit "fault = nak" "noise = 0"
 wait_dev 5
+# the adapter's NAKs counted from here (its counter holds earlier files' too)
+NAKS0=$(stat_get bus_naks)
 errs=0; good=0; i=0
 while [ $i -lt 40 ]; do
 	v=$(timed_read $DEV/in_accel_x_raw)
@@ -41,7 +43,7 @@ while [ $i -lt 40 ]; do
 done
 diag "nak: $good good reads, $errs failed"
 check "nak: most reads succeed ($good of 40)" test $good -ge 20
-check "nak: the adapter saw NAKs" test "$(stat_get bus_naks)" -gt 0
+check "nak: the adapter NAKed these reads" test $(($(stat_get bus_naks) - NAKS0)) -gt 0
 
 # int1_open: the sample is ready but its edge never comes: the driver
 # fails the read (EIO) after its grace for a late edge, and says why
