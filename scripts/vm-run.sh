@@ -77,12 +77,16 @@ build_daemon() {
 			die "meson setup failed, see $LOG_DIR/vm-daemon.log"
 		echo "$AS9888_REPO" >"$b/.as9888-source"
 	fi
-	ninja -C "$b" daemon/as9888-calibd >>"$LOG_DIR/vm-daemon.log" 2>&1 ||
+	# and the sensors HAL's core behind its command line (87-hal)
+	ninja -C "$b" daemon/as9888-calibd hal/as9888-hal-cat >>"$LOG_DIR/vm-daemon.log" 2>&1 ||
 		die "static as9888-calibd build failed, see $LOG_DIR/vm-daemon.log"
-	file -L "$b/daemon/as9888-calibd" | grep -q 'statically linked' ||
-		die "$b/daemon/as9888-calibd is not statically linked"
+	for p in daemon/as9888-calibd hal/as9888-hal-cat; do
+		file -L "$b/$p" | grep -q 'statically linked' ||
+			die "$b/$p is not statically linked"
+	done
 	DAEMON="$b/daemon/as9888-calibd"
-	log "as9888-calibd (static) ready in $(since "$t")"
+	HAL_CAT="$b/hal/as9888-hal-cat"
+	log "as9888-calibd and as9888-hal-cat (static) ready in $(since "$t")"
 }
 
 # The kernel's tools/iio (lsiio, iio_generic_buffer), linked statically
@@ -360,6 +364,7 @@ pack_initramfs() {
 		[ "$a" = busybox ] || ln -sf busybox "$root/bin/$a"
 	done
 	cp "$DAEMON" "$root/bin/as9888-calibd"
+	cp "$HAL_CAT" "$root/bin/as9888-hal-cat"
 	cp "$TOOLS_IIO/lsiio" "$TOOLS_IIO/iio_generic_buffer" "$root/usr/bin/"
 	for a in gpiodetect gpioinfo gpioget iio_info iio_attr iio_readdev; do
 		copy_with_libs "$root" "/usr/bin/$a"
