@@ -121,9 +121,10 @@ cp $REC $RD/good
 INODE=$(stat -c %i $REC)
 # nak: every 50th transfer fails (counted from power-on). Where that falls
 # is not the same on every run (guests saw 3-3 and 3-28, measurements of
-# the first and the second level run, and 3-24, the DAC write): any step
-# is accepted; that the test stops at the first NAK, with a bus error, is
-# checked below.
+# the first and the second level run, and 3-24, the DAC write): the step
+# is taken from the first failure, which must name a step of the test and
+# a judgment, failed_step must be that step, and (below) the test stopped
+# at the first NAK with the bus error as its first failure.
 for f in "wia:1-4:device ID (WIA)" \
 	 "rstn_open:1-2:RSTN pin check (D11)" \
 	 "eeprom_blank:1-27:EEPROM contents" \
@@ -134,7 +135,7 @@ for f in "wia:1-4:device ID (WIA)" \
 	 "selftest_weak:2-21:self-test Z after adjustment" \
 	 "saturate_z:3-12:Z below 2047 on every sample" \
 	 "stuck_x:3-23:level posture (D8)" \
-	 "nak:*:*"; do
+	 "nak:any:any"; do
 	F=${f%%:*}; r=${f#*:}; S=${r%%:*}; N=${r#*:}
 	printf '%s\nfault = %s\n' "$U" "$F" > $SIM/unit
 	T0=$(ms_now)
@@ -143,20 +144,31 @@ for f in "wia:1-4:device ID (WIA)" \
 	T1=$(ms_now)
 	eq "$F: exit status 1" $RC 1
 	G=$(jfirst $RD/f.json)
-	case "$G" in
-	$S" "$N) ok "$F: fails first at $S ($N)" ;;
-	*) nok "$F: fails first at $S ($N)" "got '$G'" ;;
-	esac
+	if [ "$S" = any ]; then
+		S=${G%% *}
+		N=${G#"$S"}
+		N=${N# }
+		case "$S" in
+		[1-4]-[0-9]*) ;;
+		*) S="a step of the test" ;;
+		esac
+		[ -n "$N" ] || N="a judgment"
+	fi
+	if [ "$G" = "$S $N" ]; then
+		ok "$F: fails first at $S ($N)"
+	else
+		nok "$F: fails first at $S ($N)" "got '$G'"
+	fi
 	G=$(jtop $RD/f.json failed_step)
 	case "$G" in
-	$S) ok "$F: failed_step $S" ;;
+	"$S") ok "$F: failed_step $S" ;;
 	*) nok "$F: failed_step $S" "got '$G'" ;;
 	esac
 	check "$F: no record written, the existing one untouched" same_file $REC $RD/good
 	diag "$F: $(grep '"step": .*"result": "fail"' $RD/f.json | head -n 1 | sed 's/^ *//') ($((T1 - T0)) ms)"
 done
 check "nak: the test stopped at the first NAK" test "$(stat_get chip_naks)" -eq 1
-check "nak: the failure is a bus error" grep -q '"measured": "bus transfer failed' $RD/f.json
+check "nak: the first failure is the bus error" sh -c "grep '\"step\": .*\"result\": \"fail\"' $RD/f.json | head -n 1 | grep -q '\"measured\": \"bus transfer failed'"
 # Without a working INT1 the rest of the test polls DRDY over i2c-dev
 printf '%s\nfault = int1_open\n' "$U" > $SIM/unit
 $CALIBD factory-test $RAW --record $REC --json --keep-going > $RD/f.json 2> $RD/f.err
@@ -212,7 +224,8 @@ if [ -f /tmp/rec ]; then
 		"$(cal_get)" "$CAL" 4
 	$CALIBD restore --backend iio --record $REC > /dev/null 2>&1
 else
-	plan_more -1	# (run alone: 80-daemon left no record to compare)
+	skip "the iio backend's record (80-daemon.sh) within 1 chip LSB of this one" \
+		"80-daemon did not run before (AS9888_VM_ONLY): no record to compare"
 	diag "no /tmp/rec of 80-daemon.sh (not run): no comparison with it"
 fi
 
