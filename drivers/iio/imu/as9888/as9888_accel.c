@@ -131,12 +131,13 @@ static int as9888_read_calibbias(struct as9888_chip *chip, int axis, int *val)
 
 /*
  * Write an axis' offset DAC; with chip->lock held, in the gap. regmap
- * takes a value into its cache before the bus write, and keeps it when the
- * write fails or reads back wrong. Then the old value is written back, so
- * that the cache (which compensates every later sample, and which runtime
- * resume writes to the chip) and the chip hold the DAC value of the
- * calibbias kept. When that write fails too, the cache holds it all the
- * same, but the chip may run with the new one until it is powered again:
+ * takes a value into its cache before the bus write, keeps it when it
+ * reads back wrong and drops the register from the cache when the bus
+ * write fails. Either way the old value is then written back, so that the
+ * cache (which compensates every later sample, and which runtime resume
+ * writes to the chip) and the chip hold the DAC value of the calibbias
+ * kept. When that write fails too, the old value goes into the cache
+ * alone, and the chip may run with the new one until it is powered again:
  * that is logged.
  */
 static int as9888_write_dac(struct as9888_chip *chip, int axis, u8 da)
@@ -157,10 +158,15 @@ static int as9888_write_dac(struct as9888_chip *chip, int axis, u8 da)
 		return 0;
 
 	prev = old;
-	if (as9888_write_trim(chip, reg, &prev, 1))
+	if (as9888_write_trim(chip, reg, &prev, 1)) {
+		/* A write that fails on the bus drops the register from the cache */
+		regcache_cache_only(chip->regmap, true);
+		regmap_write(chip->regmap, reg, old);
+		regcache_cache_only(chip->regmap, false);
 		dev_err(chip->dev,
 			"offset DAC 0x%02x may hold 0x%02x until the chip is powered again (0x%02x kept)\n",
 			reg, da, prev);
+	}
 
 	return ret;
 }

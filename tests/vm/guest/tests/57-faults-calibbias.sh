@@ -6,10 +6,13 @@
 # offset DAC value, and _raw reads as before. Once with the write failing
 # (the driver writes the old value back), once with the write back failing
 # too (the cache must hold the old value all the same; the driver says the
-# chip may not). regmap caches a value before its bus write: before the
-# fix the cache kept the new DAC value while the calibbias and the chip
-# kept the old ones, and _raw was off by the DAC step.
-plan 17
+# chip may not); then once more after a runtime suspend, whose resume
+# writes the register cache to the chip. regmap caches a value before its
+# bus write and, when a raw write fails on the bus, drops the register
+# from its cache (a value that reads back wrong stays there): before the
+# fix, resume then did not restore that DAC register at all, and the chip
+# ran with its reset value under the calibbias kept.
+plan 20
 set_unit "temperature = 23.75" "offset = 40 -25 60" "noise = 0"
 wait_dev 5
 # the device stays powered: a runtime resume would spend the failures on
@@ -37,6 +40,13 @@ for N in 1 2; do
 done
 check "the failed write back was logged" \
 	kmsg_since 57-calibbias 'may hold'
+# Runtime PM cuts the supplies and writes the cache back on resume: the
+# DAC the chip runs with afterwards is the cache's
+echo auto > "$(pm_dir)/control"
+check "after the failed writes: runtime suspended" wait_runtime suspended
+accel_near "after a runtime suspend: _raw as before" "$(accel_mean 2)" "$RAW0" 1
+eq "after a runtime suspend: the chip holds the old DAC values" "$(chip_dac)" "$DAC0"
+echo on > "$(pm_dir)/control"
 # the bus works again: the same write goes through and moves x
 check "calibbias write on a working bus" \
 	sh -c "echo $((X0 + 2000)) > $DEV/in_accel_x_calibbias"
