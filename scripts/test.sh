@@ -68,7 +68,8 @@ if [ "$what" = all ]; then
 	[ -z "${AS9888_SRC:-}" ] || narrow="$narrow AS9888_SRC=$AS9888_SRC"
 	if [ -n "$narrow" ]; then
 		echo "scripts/test.sh all: refusing a narrowed full run:$narrow" >&2
-		echo "(unset it, or run scripts/vm-run.sh / scripts/upstream-series.sh with it)" >&2
+		echo "(unset it, or run the stage's own script with it: scripts/vm-run.sh," \
+			"upstream-series.sh, kernel-build.sh, dkms-check.sh)" >&2
 		exit 2
 	fi
 fi
