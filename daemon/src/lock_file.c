@@ -4,6 +4,7 @@
 #include <stdbool.h>
 #include <stdlib.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/file.h>
@@ -24,7 +25,7 @@
 static int lock_file_replace(const char *path, unsigned int mode, char *err,
 			     size_t errlen)
 {
-	char tmp[4096];
+	char tmp[PATH_MAX];
 	int fd, ret;
 
 	if (snprintf(tmp, sizeof(tmp), "%s.XXXXXX", path) >= (int)sizeof(tmp)) {
@@ -51,7 +52,8 @@ static int lock_file_replace(const char *path, unsigned int mode, char *err,
 	return ret;
 }
 
-int lock_file_open(const char *path, unsigned int mode, char *err, size_t errlen)
+int lock_file_open(const char *path, unsigned int mode, bool replace, char *err,
+		   size_t errlen)
 {
 	struct stat st;
 	mode_t loose;
@@ -76,26 +78,41 @@ again:
 	 * flock() works on a descriptor opened read-only: a lock others may
 	 * read is one they may hold, then and later (a chmod does not take
 	 * back a descriptor). One made looser (by an older version, or by
-	 * hand) is replaced by a new file of @mode when it is ours; one that
+	 * hand) is replaced by a new file of @mode when it is ours and
+	 * @replace (a lock that holds no data), else tightened; one that
 	 * others could write is left as it is, for the caller's trust check
 	 * to refuse.
 	 */
 	loose = st.st_mode & 0777 & ~(mode_t)mode;
-	if (loose && !(loose & (S_IWGRP | S_IWOTH)) && st.st_uid == geteuid()) {
+	if (!loose || (loose & (S_IWGRP | S_IWOTH)) || st.st_uid != geteuid())
+		return fd;
+	if (!replace) {
+		if (!fchmod(fd, (mode_t)mode))
+			return fd;
+		snprintf(err, errlen, "cannot make %s private (chmod %04o): %s",
+			 path, mode, strerror(errno));
 		close(fd);
-		if (replaced) {
-			snprintf(err, errlen, "lock %s is loose again right after it was replaced: "
-				 "something changes it, remove it", path);
-			return -EPERM;
-		}
-		ret = lock_file_replace(path, mode, err, errlen);
-		if (ret)
-			return ret;
-		replaced = true;
-		goto again;
+		return -EPERM;
 	}
+	close(fd);
+	if (replaced) {
+		snprintf(err, errlen, "lock %s is loose again right after it was replaced: "
+			 "something changes it, remove it", path);
+		return -EPERM;
+	}
+	ret = lock_file_replace(path, mode, err, errlen);
+	if (ret)
+		return ret;
+	replaced = true;
+	goto again;
+}
 
-	return fd;
+bool lock_file_current(int fd, const char *path)
+{
+	struct stat held, named;
+
+	return !fstat(fd, &held) && !lstat(path, &named) &&
+	       held.st_dev == named.st_dev && held.st_ino == named.st_ino;
 }
 
 int lock_file_try(int fd)

@@ -147,7 +147,8 @@ static int store_sample(const char *path, const double m[3], const double a[3],
 		return -ENOMEM;
 	}
 	/* never through a link, never blocking on a FIFO put there */
-	fd = lock_file_open(path, 0600, err, errlen);
+	/* the samples are data: a loose file of ours is tightened, never replaced */
+	fd = lock_file_open(path, 0600, false, err, errlen);
 	if (fd < 0) {
 		free(text);
 		return fd;

@@ -25,8 +25,9 @@
  * client may ask for status, magn and magn-feed (a consumer's requests);
  * check, recalibrate and rollback only root and the members of the
  * operator group (--operator-group; request_for_operator()). Requests that
- * change the record take a change from a budget (record_budget.h) and are
- * refused when it is spent; their requester is named in every log line
+ * change the record take a change from a budget (record_budget.h) when
+ * they start, failed or not, and are refused when it is spent; their
+ * requester is named in every log line
  * about them. Routine lines (requests of consumers, refusals) are bounded
  * (log_limit.h), so a flood cannot push those lines out of the journal.
  */
@@ -322,6 +323,7 @@ static void client_start(struct service *s, struct client *c)
 	}
 	pid = spawn(c->fd, run_request, s, c);
 	if (pid < 0) {
+		/* nothing ran: nothing written */
 		if (request_changes_state(c->req.kind))
 			record_budget_refund(&s->budget);
 		log_msg("%s not run: cannot fork: %s", name, strerror((int)-pid));
@@ -460,7 +462,7 @@ static struct client *slot_for(struct service *s, uid_t uid)
 {
 	struct client *free_slot = NULL, *idle = NULL, *other = NULL;
 	unsigned int held[CLIENTS_MAX] = { 0 };
-	unsigned int i, j, same = 0, users = 0, most = 0;
+	unsigned int i, j, same = 0, users = 0, most = CLIENTS_MAX;
 	bool fits;
 
 	for (i = 0; i < CLIENTS_MAX; i++) {
@@ -488,10 +490,13 @@ static struct client *slot_for(struct service *s, uid_t uid)
 		return free_slot;
 	if (!idle && uid != 0 && same < CLIENTS_PER_UID) {
 		/* the users' share is full: the biggest holder gives one up */
+		/* root's connections are its reserve, never given up */
 		for (i = 0; i < CLIENTS_MAX; i++)
-			if (held[i] > held[most])
+			if (s->clients[i].state != CLIENT_FREE && s->clients[i].uid != 0 &&
+			    (most == CLIENTS_MAX || held[i] > held[most]))
 				most = i;
-		for (i = 0; held[most] > same + 1 && i < CLIENTS_MAX; i++) {
+		for (i = 0; most < CLIENTS_MAX && held[most] > same + 1 &&
+		     i < CLIENTS_MAX; i++) {
 			struct client *c = &s->clients[i];
 
 			if (c->state == CLIENT_READING && c->uid == s->clients[most].uid &&
@@ -589,9 +594,10 @@ static void client_done(struct service *s, struct client *c, int wstatus)
 		request_reply_status_now(c->fd, "as9888-calibd: the request was killed\n",
 					 status);
 	if (request_changes_state(c->req.kind)) {
-		/* failed: nothing was written (a command writes only on success) */
-		if (status)
-			record_budget_refund(&s->budget);
+		/*
+		 * A failed request keeps its change taken: one may have written
+		 * (a rollback swapped and swapped back, a save cut short)
+		 */
 		log_msg("%s done: exit status %d (requested by %s)",
 			request_name(c->req.kind), status, c->peer);
 	} else if (!request_quiet(c->req.kind) || status) {

@@ -304,27 +304,36 @@ uid_t peer_describe(int fd, char desc[PEER_DESC_LEN])
 #ifndef SO_PEERGROUPS
 #define SO_PEERGROUPS	59
 #endif
-/* Supplementary groups of a peer looked at; more are not */
-#define PEER_GROUPS_MAX	256
+/* Supplementary groups of a peer read without an allocation */
+#define PEER_GROUPS_FEW	64
 
 bool peer_in_group(int fd, gid_t gid)
 {
-	gid_t groups[PEER_GROUPS_MAX];
-	socklen_t len = sizeof(groups);
+	gid_t few[PEER_GROUPS_FEW], *groups = few;
+	socklen_t len = sizeof(few);
 	struct ucred cred;
 	socklen_t clen = sizeof(cred);
+	bool in = false;
 	size_t i;
 
 	if (getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &clen))
 		return false;
 	if (cred.gid == gid)
 		return true;
-	/* the groups the peer had when it connected (Linux 4.13 and later) */
-	if (getsockopt(fd, SOL_SOCKET, SO_PEERGROUPS, groups, &len))
-		return false;
-	for (i = 0; i < len / sizeof(groups[0]); i++)
-		if (groups[i] == gid)
-			return true;
+	/*
+	 * The groups the peer had when it connected (Linux 4.13 and later);
+	 * ERANGE tells how much room more of them need
+	 */
+	if (getsockopt(fd, SOL_SOCKET, SO_PEERGROUPS, groups, &len)) {
+		if (errno != ERANGE || !len || !(groups = malloc(len)))
+			return false;
+		if (getsockopt(fd, SOL_SOCKET, SO_PEERGROUPS, groups, &len))
+			len = 0;
+	}
+	for (i = 0; i < len / sizeof(groups[0]) && !in; i++)
+		in = groups[i] == gid;
+	if (groups != few)
+		free(groups);
 
-	return false;
+	return in;
 }

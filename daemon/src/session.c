@@ -214,6 +214,9 @@ static int check_lock(const char *lock, int fd, char *err, size_t errlen)
 	return storage_trust_file(&trust, lock, &st, err, errlen);
 }
 
+/* A lock found replaced after it was taken is opened again this often at most */
+#define LOCK_REOPEN_TRIES	4
+
 /* Open <@path>.lock, checked and trusted; the fd or -errno (said) */
 static int open_lock(const char *path, char *lock, size_t size)
 {
@@ -226,7 +229,7 @@ static int open_lock(const char *path, char *lock, size_t size)
 		snprintf(err, sizeof(err), "record path %s is too long", path);
 		ret = -ENAMETOOLONG;
 	}
-	fd = ret ? ret : lock_file_open(lock, LOCK_MODE, err, sizeof(err));
+	fd = ret ? ret : lock_file_open(lock, LOCK_MODE, true, err, sizeof(err));
 	if (fd >= 0 && (ret = check_lock(lock, fd, err, sizeof(err)))) {
 		close(fd);
 		fd = ret;
@@ -245,8 +248,10 @@ static int open_lock(const char *path, char *lock, size_t size)
 static int take_lock(const char *path, bool wait, unsigned int timeout_s)
 {
 	char lock[PATH_MAX];
+	unsigned int tries = 0;
 	int fd, ret;
 
+again:
 	fd = open_lock(path, lock, sizeof(lock));
 	if (fd < 0)
 		return fd;
@@ -262,6 +267,15 @@ static int take_lock(const char *path, bool wait, unsigned int timeout_s)
 	else if (ret && ret != -EWOULDBLOCK)
 		fprintf(stderr, "as9888-calibd: cannot lock %s: %s\n", lock,
 			strerror(-ret));
+	/* the file was replaced (a loose lock made private) while we waited */
+	if (!ret && !lock_file_current(fd, lock)) {
+		close(fd);
+		if (++tries < LOCK_REOPEN_TRIES)
+			goto again;
+		fprintf(stderr, "as9888-calibd: %s keeps being replaced while it is locked: remove it\n",
+			lock);
+		return -EBUSY;
+	}
 	if (!ret)
 		ret = recover(path);
 	if (ret) {
