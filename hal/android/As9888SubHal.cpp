@@ -106,21 +106,27 @@ class As9888SubHal : public ISensorsSubHal {
     }
 
     Return<Result> activate(int32_t handle, bool enabled) override {
-        as9888_hal* h = hal();
+        // held across the call: initialize() must not close the core under it
+        std::lock_guard<std::mutex> lock(mLock);
+        as9888_hal* h = mHal;
 
         return h ? call(h, as9888_hal_activate(h, handle, enabled), "activate", handle)
                  : Result::INVALID_OPERATION;
     }
 
     Return<Result> batch(int32_t handle, int64_t periodNs, int64_t latencyNs) override {
-        as9888_hal* h = hal();
+        // held across the call: initialize() must not close the core under it
+        std::lock_guard<std::mutex> lock(mLock);
+        as9888_hal* h = mHal;
 
         return h ? call(h, as9888_hal_batch(h, handle, periodNs, latencyNs), "batch", handle)
                  : Result::INVALID_OPERATION;
     }
 
     Return<Result> flush(int32_t handle) override {
-        as9888_hal* h = hal();
+        // held across the call: initialize() must not close the core under it
+        std::lock_guard<std::mutex> lock(mLock);
+        as9888_hal* h = mHal;
 
         return h ? call(h, as9888_hal_flush(h, handle), "flush", handle)
                  : Result::INVALID_OPERATION;
@@ -147,7 +153,8 @@ class As9888SubHal : public ISensorsSubHal {
     }
 
     Return<void> debug(const hidl_handle& fd, const hidl_vec<hidl_string>& /* args */) override {
-        as9888_hal* h = hal();
+        std::lock_guard<std::mutex> lock(mLock);
+        as9888_hal* h = mHal;
         char err[256] = "";
 
         if (fd.getNativeHandle() == nullptr || fd->numFds < 1) return Void();
@@ -221,11 +228,6 @@ class As9888SubHal : public ISensorsSubHal {
         return true;
     }
 
-    as9888_hal* hal() {
-        std::lock_guard<std::mutex> lock(mLock);
-        return mHal;
-    }
-
     static Result call(as9888_hal* h, int ret, const char* what, int32_t handle) {
         if (ret && ret != -EINVAL) {
             char err[256];
@@ -236,6 +238,9 @@ class As9888SubHal : public ISensorsSubHal {
         return toResult(ret);
     }
 
+    // guards mHal and mCallback: every call into the core holds it, so
+    // initialize() never closes the core while another call uses it (the
+    // core's reader thread, which calls post(), never takes it)
     std::mutex mLock;
     as9888_hal* mHal = nullptr;
     sp<IHalProxyCallback> mCallback;
