@@ -79,7 +79,7 @@ static void as9888_test_decode_example(struct kunit *test)
 			-30 * ee.axis[2].kote_den);
 }
 
-/* D1: the Z fields come from the EAZ* addresses */
+/* The Z axis's fields are read from the EAZ* addresses */
 static void as9888_test_decode_z_addresses(struct kunit *test)
 {
 	struct as9888_eeprom ee;
@@ -193,7 +193,7 @@ static void as9888_test_decode_blank(struct kunit *test)
 			   "EEPROM blank (all bytes 0xff)");
 }
 
-/* D4: ET1/ET2 out of range or a span beyond 10..80 degC: 35 degC */
+/* ET1/ET2 out of range, or a span beyond 10..80 degC: delta-T is 35 degC */
 struct as9888_delta_t_case {
 	const char *name;
 	u8 et1, et2;
@@ -239,7 +239,7 @@ static void as9888_test_delta_t(struct kunit *test)
 			(s64)56 * 1500 * ee.axis[0].kote_den);
 }
 
-/* D9: |Kote| > 10.2 LSB/degC is a warning, the EEPROM stays usable */
+/* |Kote| > 10.2 LSB/degC is a warning: the EEPROM stays usable */
 static void as9888_test_kote_warning(struct kunit *test)
 {
 	struct as9888_eeprom ee;
@@ -739,7 +739,7 @@ static void as9888_test_bias_dac(struct kunit *test)
 	KUNIT_EXPECT_EQ(test, as9888_bias_dac(&trim, 0, &da), -EINVAL);
 }
 
-/* 6.6, D5, D6: DACopt, rint ties to even, clamping */
+/* The optimal DAC code: rounded to nearest, ties to even, then clamped */
 struct as9888_dac_opt_case {
 	const char *name;
 	u8 ga, da, ee_gain;
@@ -862,7 +862,7 @@ static void as9888_test_dac_step(struct kunit *test)
 	KUNIT_EXPECT_EQ(test, as9888_dac_step_q16(0x07), 5835553);
 }
 
-/* D5: rint, ties to even */
+/* Rounding to nearest, ties to even */
 struct as9888_round_case {
 	const char *name;
 	s64 num, den, q;
