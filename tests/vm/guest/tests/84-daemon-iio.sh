@@ -43,7 +43,7 @@ uptime_ms() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
 # data (which has limits)
 nak_end_ok() {
 	[ "$GOT" = pass ] || [ "$GOT" = 4-1 ] ||
-		grep '"result": "fail"' /tmp/iio/ft.json | head -n 1 |
+		grep '"step": .*"result": "fail"' /tmp/iio/ft.json | head -n 1 |
 		grep -q "\"step\": \"$GOT\".*\"limits\": \"\""
 }
 ft_iio() {
@@ -170,7 +170,7 @@ for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
 	GOT=$(json_field /tmp/iio/ft.json failed_step)
 	[ -n "$GOT" ] && [ "$GOT" != null ] || GOT=$(json_field /tmp/iio/ft.json result)
 	[ -n "$GOT" ] || GOT="exit $FT_RC: $(head -c 200 /tmp/iio/ft.err)"
-	diag "$1: $GOT, exit $FT_RC, $FT_WALL_MS ms: $(grep '"result": "fail"' /tmp/iio/ft.json | head -n 1 | cut -c1-300)"
+	diag "$1: $GOT, exit $FT_RC, $FT_WALL_MS ms: $(grep '"step": .*"result": "fail"' /tmp/iio/ft.json | head -n 1 | cut -c1-300)"
 	# nak: every 50th transfer fails, wherever it falls: the test passes
 	# (the NAK fell where the driver retries), ends at 4-1 (it fell on
 	# applying the record) or stops at its first failure, which must be
