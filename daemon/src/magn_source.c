@@ -226,9 +226,12 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 	int axis, ret;
 
 	/*
-	 * Each read is a measurement of its own: the field's three axes are
-	 * read one after the other, the closest in time they can be, then
-	 * the accelerometer's
+	 * Each read is a measurement of its own, and a device that turns
+	 * moves between them: each axis of the field is read right before the
+	 * same axis of the accelerometer, so that the two vectors are taken
+	 * one measurement apart axis by axis (the angle between them, the dip
+	 * the calibration's consistency gate watches, is then off by what the
+	 * device turns in one measurement, not in three)
 	 */
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		/* raw = (count + calibbias) * calibscale: the count back */
@@ -240,8 +243,6 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 			return ret;
 		r->field_ut[axis] = (v / d - s->driver.calibbias[axis]) *
 				    s->scale_ut[axis];
-	}
-	for (axis = 0; axis < AS9888_AXES; axis++) {
 		ret = read_raw(s->accel_dir, accel_raw[axis], 8 * ACCEL_RAW_MAX,
 			       &v, err, errlen);
 		if (ret)
