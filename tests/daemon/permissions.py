@@ -64,6 +64,19 @@ def recv_all(s):
     return out
 
 
+def reap(pid, r):
+    """All a forked child writes to R until it ends; then the child reaped"""
+    out = b""
+    while True:
+        b = os.read(r, 4096)
+        if not b:
+            break
+        out += b
+    os.close(r)
+    os.waitpid(pid, 0)
+    return out
+
+
 def child_ask(w, r, sock, line, uid, gid, groups, timeout):
     os.close(r)
     try:
@@ -110,15 +123,7 @@ def ask(sock, line, uid=0, gid=0, groups=(), timeout=120):
         finally:
             os._exit(0)
     os.close(w)
-    out = b""
-    while True:
-        b = os.read(r, 4096)
-        if not b:
-            break
-        out += b
-    os.close(r)
-    os.waitpid(pid, 0)
-    return out.decode(errors="replace")
+    return reap(pid, r).decode(errors="replace")
 
 
 def status_of(reply):
@@ -233,15 +238,7 @@ def main():
         seventh = ask(sock, "status", 5007, 5007, timeout=60)
         told = []
         for pid, r in holders:
-            got = b""
-            while True:
-                b = os.read(r, 4096)
-                if not b:
-                    break
-                got += b
-            told.append(got)
-            os.close(r)
-            os.waitpid(pid, 0)
+            told.append(reap(pid, r))
         check("six users holding 4 idle connections each: a seventh user is served",
               status_of(seventh) == 0, seventh)
         check("the user holding the most gave one up, told why",
