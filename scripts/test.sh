@@ -216,6 +216,11 @@ yocto_check() {
 	counted_run "$build/yocto.log" 'yocto: ' "$top/scripts/yocto-check.sh"
 }
 
+# every udev rules file through Debian 13's "udevadm verify": its checks counted
+udev_rules() {
+	counted_run "$build/udev-rules.log" 'udev-rules: ' "$top/scripts/udev-rules-check.sh"
+}
+
 # the suite built with musl-gcc (scripts/musl-check.sh): its tests counted
 musl_suite() {
 	counted_run "$build/musl.log" 'musl: ' "$top/scripts/musl-check.sh"
@@ -233,6 +238,7 @@ stage "release build" release_build
 stage "musl: daemon, libas9888magn and the suite built with musl-gcc" musl_suite
 stage "gpio.c against libgpiod 2.x" "$top/scripts/libgpiod2-check.sh"
 stage "systemd units" "$top/scripts/check-units.sh" "$build/release/daemon/as9888-calibd"
+stage "udev rules (udevadm verify, Debian 13's)" udev_rules
 stage "factory-test benchmark" benchmark
 stage "daemon idle cost and restore latency (release build)" \
 	"$top/tests/daemon/daemon.sh" "$build/release/daemon/as9888-calibd"
