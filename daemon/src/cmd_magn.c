@@ -61,8 +61,8 @@ static int open_source(const struct cli_opts *o, const struct calib_record *rec,
 			 IIO_MAGN_NAME, accel);
 		ret = -ENODEV;
 	} else {
-		ret = magn_source_open_iio(accel, magn, rec->eeprom, src, err,
-					   sizeof(err));
+		ret = magn_source_open_iio(accel, magn, rec->eeprom, stdout,
+					   src, err, sizeof(err));
 	}
 	if (ret)
 		fprintf(stderr, "as9888-calibd: magn-calibrate: %s\n", err);

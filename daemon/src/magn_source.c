@@ -14,6 +14,7 @@
 #include "iio.h"
 #include "iio_value.h"
 #include "magn_cal.h"
+#include "magn_capture.h"
 #include "magn_iio.h"
 #include "magn_source.h"
 
@@ -34,6 +35,8 @@
  * @magn_dir:	the driver's magnetometer device
  * @driver:	what the driver's calibration attributes held at open
  * @scale_ut:	uT per raw LSB of each magnetometer axis (the EEPROM's EHC)
+ * @cap:	the driver's buffered capture of both devices, or NULL: sysfs
+ * @log:	where the way the driver is read is said, or NULL
  */
 struct magn_source {
 	struct transport *t;
@@ -42,6 +45,8 @@ struct magn_source {
 	char magn_dir[IIO_PATH_MAX];
 	struct magn_driver_cal driver;
 	double scale_ut[AS9888_AXES];
+	struct magn_capture *cap;
+	FILE *log;
 };
 
 static int fail(char *err, size_t errlen, int ret, const char *fmt, ...)
@@ -120,8 +125,29 @@ int magn_source_open_chip(struct transport *t, const struct calib_record *rec,
 	return 0;
 }
 
+/*
+ * The buffered capture of both devices when it can be had; else say why
+ * and read sysfs
+ */
+static void start_capture(struct magn_source *s)
+{
+	char why[IIO_ERR_LEN];
+
+	if (!magn_capture_open(s->accel_dir, s->magn_dir, &s->cap, why,
+			       sizeof(why))) {
+		if (s->log)
+			fprintf(s->log, "samples: both devices' buffers on %s at %d Hz, field and acceleration of one measurement\n",
+				magn_capture_trigger(s->cap), MAGN_CAPTURE_RATE_HZ);
+	} else if (s->log) {
+		fprintf(s->log, "samples: no buffered capture (%s): sysfs reads, the field and the acceleration of a sample a few measurements apart (a fast turn can be refused as a changing field)\n",
+			why);
+	}
+	if (s->log)
+		fflush(s->log);
+}
+
 int magn_source_open_iio(const char *accel_dir, const char *magn_dir,
-			 const uint8_t eeprom[AS9888_EEPROM_LEN],
+			 const uint8_t eeprom[AS9888_EEPROM_LEN], FILE *log,
 			 struct magn_source **out, char *err, size_t errlen)
 {
 	uint8_t raw[AS9888_EEPROM_LEN];
@@ -149,6 +175,8 @@ int magn_source_open_iio(const char *accel_dir, const char *magn_dir,
 		}
 	}
 	magn_scale_ut(raw, s->scale_ut);
+	s->log = log;
+	start_capture(s);
 	*out = s;
 
 	return 0;
@@ -213,6 +241,53 @@ static int read_raw(const char *dir, const char *name, long max, long *v,
 	return 0;
 }
 
+/* A reading of the driver's, (count + calibbias) * calibscale, as uT */
+static double driver_ut(const struct magn_source *s, int axis, long v)
+{
+	double d = s->driver.calibscale_micro[axis] / MICRO;
+
+	return (v / d - s->driver.calibbias[axis]) * s->scale_ut[axis];
+}
+
+/*
+ * A pair from the capture: 0, -ERANGE for an overflow, -EIO for a
+ * saturated accelerometer; -EAGAIN when the capture stopped (said in the
+ * log), the caller then reads sysfs
+ */
+static int read_capture(struct magn_source *s, struct magn_reading *r,
+			char *err, size_t errlen)
+{
+	struct magn_capture_pair p;
+	char why[IIO_ERR_LEN];
+	bool overflow = false;
+	int axis, ret;
+
+	ret = magn_capture_next(s->cap, &p, why, sizeof(why));
+	if (ret) {
+		if (s->log) {
+			fprintf(s->log, "samples: the buffered capture stopped (%s): sysfs reads from now on\n",
+				why);
+			fflush(s->log);
+		}
+		magn_capture_close(s->cap);
+		s->cap = NULL;
+		return -EAGAIN;
+	}
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		/* the rails: an overflow or beyond the output range */
+		overflow |= p.magn[axis] <= -MAGN_RAW_MAX ||
+			    p.magn[axis] >= MAGN_RAW_MAX - 1;
+		if (p.accel[axis] == INT16_MIN || p.accel[axis] == INT16_MAX)
+			return fail(err, errlen, -EIO, "%s: in_accel_%c saturated in the buffer",
+				    s->accel_dir, "xyz"[axis]);
+		r->field_ut[axis] = driver_ut(s, axis, p.magn[axis]);
+		r->accel[axis] = p.accel[axis];
+	}
+	r->t_ns = magn_source_now_ns(s);
+
+	return overflow ? -ERANGE : 0;
+}
+
 static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 		    size_t errlen)
 {
@@ -225,6 +300,11 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 	long v;
 	int axis, ret;
 
+	if (s->cap) {
+		ret = read_capture(s, r, err, errlen);
+		if (ret != -EAGAIN)
+			return ret;
+	}
 	/*
 	 * Each read is a measurement of its own, and a device that turns
 	 * moves between them: each axis of the field is read right before the
@@ -234,15 +314,12 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 	 * device turns in one measurement, not in three)
 	 */
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		/* raw = (count + calibbias) * calibscale: the count back */
-		double d = s->driver.calibscale_micro[axis] / MICRO;
-
 		ret = read_raw(s->magn_dir, magn_raw[axis],
 			       MAGN_RAW_RANGE_MAX, &v, err, errlen);
 		if (ret)
 			return ret;
-		r->field_ut[axis] = (v / d - s->driver.calibbias[axis]) *
-				    s->scale_ut[axis];
+		/* raw = (count + calibbias) * calibscale: the count back */
+		r->field_ut[axis] = driver_ut(s, axis, v);
 		ret = read_raw(s->accel_dir, accel_raw[axis], 8 * ACCEL_RAW_MAX,
 			       &v, err, errlen);
 		if (ret)
@@ -272,6 +349,9 @@ void magn_source_sleep(struct magn_source *s, uint64_t ns)
 		transport_sleep_ns(s->t, ns);
 		return;
 	}
+	/* the capture's rate paces the samples: its next pair is waited for */
+	if (s->cap)
+		return;
 	while (nanosleep(&ts, &ts) && errno == EINTR)
 		;
 }
@@ -284,5 +364,6 @@ void magn_source_close(struct magn_source *s)
 		chip_set_mode(&s->chip, AS9888_MS_POWER_DOWN);
 		transport_destroy(s->t);
 	}
+	magn_capture_close(s->cap);
 	free(s);
 }

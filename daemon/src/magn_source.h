@@ -4,13 +4,14 @@
  * magnetometer (in uT, without any calibration: what the fit needs) and
  * of the accelerometer (the direction of gravity, for the coverage of
  * orientations), either from the chip's registers (the simulator, the raw
- * bus) or from the bound driver's sysfs attributes.
+ * bus) or from the bound driver (its buffers, or its sysfs attributes).
  */
 #ifndef AS9888_MAGN_SOURCE_H
 #define AS9888_MAGN_SOURCE_H
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "as9888_calib.h"
 #include "record.h"
@@ -40,13 +41,17 @@ int magn_source_open_chip(struct transport *t, const struct calib_record *rec,
 			  struct magn_source **out, char *err, size_t errlen);
 
 /*
- * Measure through the driver: in_magn_*_raw and in_accel_*_raw of the
- * devices at @magn_dir and @accel_dir (one single measurement each read),
- * the driver's own magnetometer calibration undone. The EEPROM (NVMEM)
- * must equal @eeprom. 0 or -errno with why in @err.
+ * Measure through the driver, the driver's own magnetometer calibration
+ * undone, from the devices at @magn_dir and @accel_dir: the field and the
+ * acceleration of one measurement from a buffered capture of both on the
+ * shared data-ready trigger (magn_capture.h), or where that cannot be had
+ * (another program holds a buffer, no trigger) or stops, in_magn_*_raw and
+ * in_accel_*_raw read axis by axis (each read a measurement of its own).
+ * Which, and why not the capture, is said on @log (may be NULL). The
+ * EEPROM (NVMEM) must equal @eeprom. 0 or -errno with why in @err.
  */
 int magn_source_open_iio(const char *accel_dir, const char *magn_dir,
-			 const uint8_t eeprom[AS9888_EEPROM_LEN],
+			 const uint8_t eeprom[AS9888_EEPROM_LEN], FILE *log,
 			 struct magn_source **out, char *err, size_t errlen);
 
 /*

@@ -3,9 +3,13 @@
  * magn-calibrate's samples: from the simulated chip's registers (the
  * built-in unit's field of 20, -5, -40 uT, lying with +z up), refused
  * on another chip; from the driver's attributes with its own calibration
- * taken out again; an overflow is a sample to skip, not an error.
+ * taken out again; an overflow is a sample to skip, not an error. Through
+ * the driver, a buffered capture of both devices on the shared trigger
+ * (the character devices FIFOs here) pairs the samples of one measurement
+ * by their timestamps; where the capture cannot be had or stops, sysfs.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -13,6 +17,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -94,6 +100,17 @@ static void chip_other_refused(void **state)
 	assert_non_null(strstr(err, "factory-test"));
 }
 
+/* What @log holds so far */
+static void log_text(FILE *log, char *buf, size_t size)
+{
+	size_t n;
+
+	fflush(log);
+	rewind(log);
+	n = fread(buf, 1, size - 1, log);
+	buf[n] = '\0';
+}
+
 static void put_raw(const struct fake_sysfs *f, const char *m[3],
 		    const char *a[3])
 {
@@ -114,15 +131,22 @@ static void iio_samples(void **state)
 	struct fake_sysfs *f = *state;
 	struct magn_source *s;
 	struct magn_reading r;
-	char err[512];
+	char err[512], text[1024];
+	FILE *log;
 
 	fake_magn_calibration(f, true);
 	fake_put(f->magn, "in_magn_x_calibbias", "10\n");
 	fake_put(f->magn, "in_magn_x_calibscale", "1.500000\n");
 	fake_put(f->magn, "in_magn_y_calibbias", "-4\n");
 	put_raw(f, m, a);
+	log = tmpfile();
+	assert_non_null(log);
 	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
-					      &s, err, sizeof(err)), 0);
+					      log, &s, err, sizeof(err)), 0);
+	/* the tree has no buffers: sysfs, and the log says why */
+	log_text(log, text, sizeof(text));
+	assert_non_null(strstr(text, "no buffered capture"));
+	assert_non_null(strstr(text, "(no buffer)"));
 	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
 	/* 165 / 1.5 - 10 = 100 LSB of 0.3 uT; -20 + 4 = -16 LSB of 0.305859 */
 	assert_true(fabs(r.field_ut[0] - 30.0) < 1e-9);
@@ -139,10 +163,212 @@ static void iio_samples(void **state)
 	fake_magn_calibration(f, false);
 	put_raw(f, m, a);
 	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
-					      &s, err, sizeof(err)), 0);
+					      NULL, &s, err, sizeof(err)), 0);
 	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
 	assert_true(fabs(r.field_ut[0] - 165 * 0.3) < 1e-9);
 	magn_source_close(s);
+	fclose(log);
+}
+
+/* Attributes a buffer has, with the values the tree starts with */
+static const char *const buffer_attrs[][2] = {
+	{ "buffer/enable", "0" },
+	{ "buffer/length", "2" },
+	{ "trigger/current_trigger", "" },
+	{ "sampling_frequency", "50" },
+	{ "current_timestamp_clock", "realtime" },
+};
+
+/*
+ * Give both devices a buffer (scan elements as the driver's: three axes,
+ * the accelerometer's temperature, the timestamp) and character devices
+ * that are FIFOs below <root>/dev
+ */
+static void put_buffers(const struct fake_sysfs *f)
+{
+	static const char *const chans[][4] = {
+		{ "in_accel_x", "0", "le:s16/16>>0", "0" },
+		{ "in_accel_y", "1", "le:s16/16>>0", "0" },
+		{ "in_accel_z", "2", "le:s16/16>>0", "0" },
+		{ "in_temp", "3", "le:u8/16>>0", "1" },
+		{ "in_magn_x", "0", "le:s13/16>>0", "0" },
+		{ "in_magn_y", "1", "le:s13/16>>0", "0" },
+		{ "in_magn_z", "2", "le:s13/16>>0", "0" },
+	};
+	const char *dirs[2] = { f->dev, f->magn };
+	char dir[512], name[600];
+	size_t i, k;
+
+	for (k = 0; k < 2; k++) {
+		fake_mkdir(dirs[k], "buffer");
+		fake_mkdir(dirs[k], "trigger");
+		fake_mkdir(dirs[k], "scan_elements");
+		for (i = 0; i < sizeof(buffer_attrs) / sizeof(buffer_attrs[0]); i++) {
+			snprintf(name, sizeof(name), "%s\n", buffer_attrs[i][1]);
+			fake_put(dirs[k], buffer_attrs[i][0], name);
+		}
+		snprintf(dir, sizeof(dir), "%s/scan_elements", dirs[k]);
+		fake_put(dir, "in_timestamp_index", k ? "3" : "4");
+		fake_put(dir, "in_timestamp_type", "le:s64/64>>0");
+		fake_put(dir, "in_timestamp_en", "0");
+		for (i = k ? 4 : 0; i < (k ? 7 : 4); i++) {
+			snprintf(name, sizeof(name), "%s_index", chans[i][0]);
+			fake_put(dir, name, chans[i][1]);
+			snprintf(name, sizeof(name), "%s_type", chans[i][0]);
+			fake_put(dir, name, chans[i][2]);
+			snprintf(name, sizeof(name), "%s_en", chans[i][0]);
+			fake_put(dir, name, chans[i][3]);
+		}
+	}
+	snprintf(dir, sizeof(dir), "%s/dev", f->root);
+	mkdir(dir, 0700);
+	setenv("AS9888_DEVDIR", dir, 1);
+	for (k = 0; k < 2; k++) {
+		snprintf(name, sizeof(name), "%s/iio:device%zu", dir, k);
+		unlink(name);
+		assert_int_equal(mkfifo(name, 0600), 0);
+	}
+}
+
+/* Every buffer attribute as the tree started with it */
+static void buffers_as_found(const struct fake_sysfs *f)
+{
+	const char *dirs[2] = { f->dev, f->magn };
+	char buf[64], dir[512];
+	size_t i, k;
+
+	for (k = 0; k < 2; k++) {
+		for (i = 0; i < sizeof(buffer_attrs) / sizeof(buffer_attrs[0]); i++) {
+			fake_get(dirs[k], buffer_attrs[i][0], buf, sizeof(buf));
+			buf[strcspn(buf, "\n")] = '\0';
+			if (strcmp(buf, buffer_attrs[i][1]))
+				fail_msg("%s/%s left at \"%s\", not \"%s\"", dirs[k],
+					 buffer_attrs[i][0], buf, buffer_attrs[i][1]);
+		}
+		snprintf(dir, sizeof(dir), "%s/scan_elements", dirs[k]);
+		fake_get(dir, "in_timestamp_en", buf, sizeof(buf));
+		assert_int_equal(atoi(buf), 0);
+	}
+	snprintf(dir, sizeof(dir), "%s/scan_elements", f->dev);
+	fake_get(dir, "in_temp_en", buf, sizeof(buf));
+	assert_int_equal(atoi(buf), 1);
+}
+
+/* @dir/@name holds @want, as the capture writes it (no newline) */
+static void expect_attr(const char *dir, const char *name, const char *want)
+{
+	char buf[64];
+
+	fake_get(dir, name, buf, sizeof(buf));
+	if (strcmp(buf, want))
+		fail_msg("%s/%s is \"%s\", not \"%s\"", dir, name, buf, want);
+}
+
+/* A sample of three s16 axes and a timestamp, as the layout puts it */
+static void put_sample(int fd, int16_t x, int16_t y, int16_t z, int64_t ts)
+{
+	uint8_t b[16];
+	int16_t v[3] = { x, y, z };
+	int i;
+
+	for (i = 0; i < 3; i++) {
+		b[2 * i] = (uint8_t)((uint16_t)v[i] & 0xff);
+		b[2 * i + 1] = (uint8_t)((uint16_t)v[i] >> 8);
+	}
+	b[6] = b[7] = 0;
+	for (i = 0; i < 8; i++)
+		b[8 + i] = (uint8_t)((uint64_t)ts >> (8 * i));
+	assert_int_equal(write(fd, b, sizeof(b)), (ssize_t)sizeof(b));
+}
+
+static int open_writer(const struct fake_sysfs *f, int n)
+{
+	char path[512];
+	int fd;
+
+	snprintf(path, sizeof(path), "%s/dev/iio:device%d", f->root, n);
+	fd = open(path, O_WRONLY | O_NONBLOCK);
+	assert_true(fd >= 0);
+
+	return fd;
+}
+
+static void iio_buffered(void **state)
+{
+	const char *m[3] = { "7\n", "8\n", "9\n" };
+	const char *a[3] = { "1\n", "2\n", "3\n" };
+	struct fake_sysfs *f = *state;
+	char err[512], text[1024], dir[512];
+	struct magn_source *s;
+	struct magn_reading r;
+	int fa, fm;
+	FILE *log = tmpfile();
+
+	assert_non_null(log);
+	fake_magn_calibration(f, true);
+	fake_put(f->magn, "in_magn_x_calibbias", "10\n");
+	fake_put(f->magn, "in_magn_x_calibscale", "1.500000\n");
+	put_raw(f, m, a);
+	put_buffers(f);
+	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
+					      log, &s, err, sizeof(err)), 0);
+	log_text(log, text, sizeof(text));
+	assert_non_null(strstr(text, "both devices' buffers on as9888-dev0 at 20 Hz"));
+	/* both buffers on the chip's trigger, the axes and the timestamp */
+	expect_attr(f->dev, "trigger/current_trigger", "as9888-dev0");
+	expect_attr(f->magn, "trigger/current_trigger", "as9888-dev0");
+	expect_attr(f->dev, "buffer/enable", "1");
+	expect_attr(f->magn, "buffer/enable", "1");
+	expect_attr(f->magn, "sampling_frequency", "20");
+	expect_attr(f->dev, "sampling_frequency", "20");
+	snprintf(dir, sizeof(dir), "%s/scan_elements", f->dev);
+	expect_attr(dir, "in_temp_en", "0");
+	expect_attr(dir, "in_accel_y_en", "1");
+
+	fa = open_writer(f, 0);
+	fm = open_writer(f, 1);
+	/*
+	 * The magnetometer's first sample has no partner (the accelerometer's
+	 * buffer started after it): dropped. Then two measurements, their
+	 * timestamps a few microseconds apart, the second one saturated
+	 */
+	put_sample(fm, 1, 1, 1, 1000);
+	put_sample(fm, 165, -20, 0, 50001000);
+	put_sample(fa, 3, -1, 255, 50004000);
+	put_sample(fm, 4095, 0, 0, 100001000);
+	put_sample(fa, 0, 0, 256, 100002000);
+	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
+	/* 165 / 1.5 - 10 = 100 LSB of 0.3 uT: the driver's calibration undone */
+	assert_true(fabs(r.field_ut[0] - 30.0) < 1e-9);
+	assert_true(fabs(r.field_ut[1] - -20 * 0.3 * 261 / 256) < 1e-9);
+	assert_true(r.accel[0] == 3 && r.accel[1] == -1 && r.accel[2] == 255);
+	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), -ERANGE);
+
+	/* the capture ends (the devices' ends closed): sysfs from then on */
+	close(fa);
+	close(fm);
+	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
+	assert_true(fabs(r.field_ut[0] - (7 / 1.5 - 10) * 0.3) < 1e-9);
+	assert_true(r.accel[0] == 1 && r.accel[1] == 2 && r.accel[2] == 3);
+	log_text(log, text, sizeof(text));
+	assert_non_null(strstr(text, "the buffered capture stopped"));
+	magn_source_close(s);
+	buffers_as_found(f);
+
+	/* another program's buffer: no capture, nothing changed, sysfs */
+	fake_put(f->dev, "buffer/enable", "1\n");
+	rewind(log);
+	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
+					      log, &s, err, sizeof(err)), 0);
+	log_text(log, text, sizeof(text));
+	assert_non_null(strstr(text, "another program has the buffer enabled"));
+	expect_attr(f->magn, "trigger/current_trigger", "");
+	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
+	assert_true(r.accel[0] == 1);
+	magn_source_close(s);
+	fake_put(f->dev, "buffer/enable", "0\n");
+	buffers_as_found(f);
+	fclose(log);
 }
 
 int main(void)
@@ -151,6 +377,7 @@ int main(void)
 		cmocka_unit_test(chip_samples),
 		cmocka_unit_test(chip_other_refused),
 		cmocka_unit_test(iio_samples),
+		cmocka_unit_test(iio_buffered),
 	};
 
 	return cmocka_run_group_tests_name("magn-source", tests,
