@@ -7,10 +7,12 @@
  * magnetometer's (as9888-magn, iio:deviceM, its sibling below the bus
  * device) for step 2 only.
  *
- *   step 1  the driver identified the chip when it bound (WIA) and loaded
- *           the trims; the EEPROM comes from its NVMEM provider and the DAC
- *           values go through in_accel_*_calibbias (the calibbias whose
- *           DAC they are), read back (D10)
+ *   step 1  the device ID (WIA) is read through debugfs (the driver binds
+ *           to an unknown one too, saying so); the driver loaded the
+ *           trims when it bound; the EEPROM comes from its NVMEM
+ *           provider and the DAC values go through
+ *           in_accel_*_calibbias (the calibbias whose DAC they are),
+ *           read back (D10)
  *   step 2  the magnetometer device's selftest attribute runs the test
  *           and reads back its verdict (pass/fail); the adjusted readings
  *           come from debugfs iio/iio:deviceM/selftest_readings and are
@@ -108,6 +110,7 @@
 #define IIO_OVERSAMPLING_OFF	"1"
 #define IIO_OVERSAMPLING_ALPF	"4"
 #define IIO_SELFTEST_READINGS	"selftest_readings"
+#define IIO_REG_ACCESS		"direct_reg_access"
 #define IIO_TRIGGER_ATTR	"trigger/current_trigger"
 
 /* The buffer's channels the test uses, in the order of this table */
@@ -355,6 +358,68 @@ static int device_taken(struct ftest_ctx *x, const char *step,
 	return -EBUSY;
 }
 
+/*
+ * Register @reg of the chip behind the device at @dir into @val, through the
+ * IIO core's debugfs file (its address written, the value read back). @path
+ * receives the file's path, for messages. Returns 0, -EINVAL when the answer
+ * is not a register value, or -errno.
+ */
+static int read_reg_debugfs(const char *dir, unsigned int reg,
+			    unsigned int *val, char *path, size_t path_size)
+{
+	const char *base = strrchr(dir, '/');
+	char ddir[IIO_PATH_MAX], sel[16], buf[IIO_ATTR_MAX], *end;
+	unsigned long v;
+	int ret;
+
+	base = base ? base + 1 : dir;
+	snprintf(ddir, sizeof(ddir), "%s/iio/%s", iio_debugfs_root(), base);
+	snprintf(path, path_size, "%s/%s", ddir, IIO_REG_ACCESS);
+
+	snprintf(sel, sizeof(sel), "0x%02x", reg);
+	ret = iio_write_attr(ddir, IIO_REG_ACCESS, sel);
+	if (ret)
+		return ret;
+	ret = iio_read_attr(ddir, IIO_REG_ACCESS, buf, sizeof(buf));
+	if (ret < 0)
+		return ret;
+	errno = 0;
+	v = strtoul(buf, &end, 0);
+	if (end == buf || *end || errno || v > 0xff)
+		return -EINVAL;
+	*val = v;
+
+	return 0;
+}
+
+/*
+ * 1-4: the driver binds to an unknown ID too (a compatible part), saying
+ * so in the kernel log: the ID is read through debugfs, or skipped saying
+ * why (debugfs not mounted or not readable)
+ */
+static int judge_wia(struct ftest_ctx *x)
+{
+	struct iio_test_dev *d = x->dev;
+	char path[IIO_PATH_MAX], why[IIO_ERR_LEN];
+	unsigned int wia;
+	int ret;
+
+	ret = read_reg_debugfs(d->dir, AS9888_REG_WIA, &wia, path,
+			       sizeof(path));
+	if (ret) {
+		snprintf(why, sizeof(why),
+			 "%s: %s (the driver logs an unknown ID when it binds)",
+			 path, strerror(-ret));
+		ftest_skip(x, "1-4", "device ID (WIA)", why);
+		return 0;
+	}
+	ftest_judge(x, "1-4", "device ID (WIA)", wia == AS9888_WIA_VAL, "0x48",
+		    "0x%02x (%s)", wia, path);
+	ftest_value(x, wia, AS9888_WIA_VAL, AS9888_WIA_VAL, "code");
+
+	return wia != AS9888_WIA_VAL && x->stop ? -ENODEV : 0;
+}
+
 static int iio_step1(struct ftest_ctx *x)
 {
 	struct iio_test_dev *d = x->dev;
@@ -365,9 +430,9 @@ static int iio_step1(struct ftest_ctx *x)
 
 	ftest_skip(x, "1-2.rstn", "RSTN pin check (D11)",
 		   "the driver owns RSTN (--backend raw with the driver unbound checks it)");
-	/* the driver reads WIA at probe and binds to nothing else */
-	ftest_skip(x, "1-4", "device ID (WIA)",
-		   "not read here: the driver reads it when it binds and refuses any other value");
+	ret = judge_wia(x);
+	if (ret || x->stop)
+		return ret;
 
 	/*
 	 * The test takes the buffer, never from another program: a capture

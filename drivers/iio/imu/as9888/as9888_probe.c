@@ -247,10 +247,13 @@ static int as9888_chip_init(struct as9888_chip *chip)
 	ret = regmap_read(chip->regmap, AS9888_REG_WIA, &wia);
 	if (ret)
 		return dev_err_probe(chip->dev, ret, "cannot read WIA\n");
+	/*
+	 * An unknown ID is not an error: a compatible part whose firmware
+	 * node names "alsen,as9888" as its fallback compatible is to probe
+	 */
 	if (wia != AS9888_WIA_VAL)
-		return dev_err_probe(chip->dev, -ENODEV,
-				     "WIA reads 0x%02x, not an AS9888 (0x%02x)\n",
-				     wia, AS9888_WIA_VAL);
+		dev_info(chip->dev, "WIA reads 0x%02x, expected 0x%02x\n",
+			 wia, AS9888_WIA_VAL);
 
 	ret = as9888_read_eeprom(chip, raw);
 	if (ret)

@@ -6,7 +6,7 @@
 # check,
 # recalibrate after a "shock" and rollback, also as daemon requests; every
 # fault fails at its step; the device's attributes are left as found.
-plan 53
+plan 56
 CALIBD=/bin/as9888-calibd
 U84="temperature = 25
 offset = 40 -25 60
@@ -76,6 +76,8 @@ eq "factory test through the driver passes" "$FT_RC $(json_field /tmp/iio/ft.jso
 [ "$FT_RC" = 0 ] || sed 's/^/# /' /tmp/iio/ft.err
 check "the report judges D11's INT1 through the data-ready trigger" \
 	grep -q '"INT1 pin check (D11)", "measured": "\([0-9]*\) of \1 samples from as9888-dev[0-9]*".*"pass"' /tmp/iio/ft.json
+check "the device ID (WIA) is read through debugfs and judged" \
+	grep -q '"device ID (WIA)", "measured": "0x48 (/sys/kernel/debug/iio/iio:device[0-9]*/direct_reg_access)".*"pass"' /tmp/iio/ft.json
 check "RSTN and INT2 checks are reported as skipped, not passed" \
 	sh -c "grep -q '\"RSTN pin check (D11)\".*\"skip\"' /tmp/iio/ft.json &&
 	       grep -q '\"INT2 pin check (D11)\".*\"skip\"' /tmp/iio/ft.json"
@@ -157,7 +159,7 @@ check_not "SIGTERM stops the daemon" kill -0 $DPID84
 # Each fault fails the test at its step (or is out of the driver's sight)
 for f in "no_drdy 2-4" "int1_open 2-4" "int2_open pass" "rstn_open pass" \
 	"stuck_x 3-23" "saturate_z 3-12" "selftest_weak 2-21" "eeprom_blank nodev" \
-	"wia nodev" "nak any"; do
+	"wia 1-4" "nak any"; do
 	set -- $f
 	set_unit "fault = $1"
 	if ! wait_dev 3; then

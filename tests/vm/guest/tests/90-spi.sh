@@ -2,7 +2,7 @@
 # The same chip on the adapter's SPI controller, through as9888_spi.
 # The driver holds RSTN (a module reference on the GPIO provider): unload it
 # first, as on a real board.
-plan 21
+plan 22
 check "as9888_i2c unloads" rmmod as9888_i2c
 check "adapter unloads" rmmod as9888_sim
 check_not "no IIO device with the adapter gone" iio_dev
@@ -42,10 +42,12 @@ if buf_start $MDEV "$T" /tmp/buf3m magn_x magn_y magn_z timestamp; then
 else
 	nok_for 2 "SPI: magn buffer enable with the data-ready trigger"
 fi
+kmsg_mark 90-wia
 set_unit "fault = wia"
-sleep 0.5
-check_not "SPI: wrong WIA fails probe" iio_dev
-check_not "SPI: wrong WIA: no magn device either" iio_dev_named as9888-magn
+check "SPI: unknown WIA: the driver binds" wait_dev 5
+check "SPI: unknown WIA: the magn device too" test -n "$MDEV"
+check "SPI: unknown WIA: the probe names the ID read and the one expected" \
+	kmsg_since 90-wia "WIA reads 0x47, expected 0x48"
 check "SPI: as9888_spi unloads" rmmod as9888_spi
 check "SPI: adapter unloads (SPI controller removed)" rmmod as9888_sim
 insmod $MODDIR/as9888_i2c.ko
