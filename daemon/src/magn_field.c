@@ -127,20 +127,70 @@ static bool samples_file_trusted(int fd)
 	       st.st_uid == geteuid() && !(st.st_mode & (S_IWGRP | S_IWOTH));
 }
 
-/*
- * Append @m, @a to the samples file (locked), keep the last
- * MAGN_FIELD_KEEP, and feed all of them to @fit when MAGN_FIELD_FIT_EVERY
- * arrived since the last fit: 1 then, 0 when not yet, -errno
- */
-static int store_sample(const char *path, const double m[3], const double a[3],
-			struct magcal_session *fit, char *err, size_t errlen)
+/* Offer the file's samples (after its first line) to @fit, in their order */
+static void replay(char *p, struct magcal_session *fit)
 {
-	char *text = malloc(FILE_MAX + 1);
-	char *lines[MAGN_FIELD_KEEP + 1], *p, *nl;
-	unsigned int n = 0, fresh = 0, first, i;
+	char *nl;
+
+	for (; *p && (nl = strchr(p, '\n')); p = nl + 1) {
+		double v[6];
+
+		*nl = '\0';
+		if (sscanf(p, "%lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2],
+			   &v[3], &v[4], &v[5]) == 6)
+			magcal_add(fit, v, v + 3);
+	}
+}
+
+/* The store exported: each sample's reading and gravity */
+struct kept {
+	double m[MAGN_FIELD_KEEP][3];
+	double g[MAGN_FIELD_KEEP][3];
+};
+
+/*
+ * The file's contents: the count since the last fit, then @fit's store;
+ * -ENOMEM leaves the file as it was
+ */
+static int write_store(int fd, unsigned int fresh,
+		       const struct magcal_session *fit)
+{
+	struct kept *k = malloc(sizeof(*k));
+	unsigned int n, i;
+	FILE *out;
+
+	if (!k) {
+		close(fd);
+		return -ENOMEM;
+	}
+	n = magcal_export(fit, k->m, k->g, MAGN_FIELD_KEEP);
+	out = fdopen(fd, "w");
+	if (!out) {
+		close(fd);
+		free(k);
+		return -errno;
+	}
+	if (ftruncate(fd, 0) == 0 && lseek(fd, 0, SEEK_SET) == 0) {
+		fprintf(out, "#%u\n", fresh);
+		for (i = 0; i < n; i++)
+			fprintf(out, "%.3f %.3f %.3f %.0f %.0f %.0f\n",
+				k->m[i][0], k->m[i][1], k->m[i][2], k->g[i][0],
+				k->g[i][1], k->g[i][2]);
+	}
+	fclose(out);	/* and the lock */
+	free(k);
+
+	return 0;
+}
+
+int magn_field_store_sample(const char *path, const double m[3],
+			    const double a[3], struct magcal_session *fit,
+			    char *err, size_t errlen)
+{
+	char *text = malloc(FILE_MAX + 1), *p;
+	unsigned int fresh = 0;
 	int fd, ret = 0;
 	ssize_t len;
-	FILE *out;
 
 	if (!text) {
 		snprintf(err, errlen, "out of memory");
@@ -184,43 +234,24 @@ static int store_sample(const char *path, const double m[3], const double a[3],
 		p = strchr(p, '\n');
 		p = p ? p + 1 : text + len;
 	}
-	for (; *p && (nl = strchr(p, '\n')); p = nl + 1) {
-		*nl = '\0';
-		if (n == MAGN_FIELD_KEEP + 1) {
-			memmove(lines, lines + 1, sizeof(lines[0]) * MAGN_FIELD_KEEP);
-			n--;
-		}
-		lines[n++] = p;
-	}
-	fresh++;
-	first = n >= MAGN_FIELD_KEEP ? n - MAGN_FIELD_KEEP + 1 : 0;
-	if (fresh >= MAGN_FIELD_FIT_EVERY && fit) {
-		for (i = first; i < n; i++) {
-			double v[6];
-
-			if (sscanf(lines[i], "%lf %lf %lf %lf %lf %lf", &v[0], &v[1],
-				   &v[2], &v[3], &v[4], &v[5]) == 6)
-				magcal_add(fit, v, v + 3);
-		}
-		magcal_add(fit, m, a);
+	/*
+	 * The store as it was, then the new sample: kept by direction
+	 * (magcal's store), so a long time in one posture replaces samples
+	 * of that posture, not the directions covered before
+	 */
+	replay(p, fit);
+	magcal_add(fit, m, a);
+	if (++fresh >= MAGN_FIELD_FIT_EVERY) {
 		fresh = 0;
 		ret = 1;
 	}
-	out = fdopen(fd, "w");
-	if (!out) {
-		close(fd);
-		free(text);
-		return ret;
-	}
-	if (ftruncate(fd, 0) == 0 && lseek(fd, 0, SEEK_SET) == 0) {
-		fprintf(out, "#%u\n", fresh);
-		for (i = first; i < n; i++)
-			fprintf(out, "%s\n", lines[i]);
-		fprintf(out, "%.3f %.3f %.3f %.0f %.0f %.0f\n", m[0], m[1], m[2],
-			a[0], a[1], a[2]);
-	}
-	fclose(out);	/* and the lock */
 	free(text);
+	fd = write_store(fd, fresh, fit);
+	if (fd) {
+		snprintf(err, errlen, "%.300s: cannot be rewritten: %s; this sample is not stored",
+			 path, strerror(-fd));
+		return fd;
+	}
 
 	return ret;
 }
@@ -298,8 +329,8 @@ int cmd_magn_feed(const struct cli_opts *o)
 		return EXIT_FAILURE;
 	}
 	samples_path(o, path, sizeof(path));
-	ret = store_sample(path, m, o->magn_feed + AS9888_AXES, fit, err,
-			   sizeof(err));
+	ret = magn_field_store_sample(path, m, o->magn_feed + AS9888_AXES, fit,
+				      err, sizeof(err));
 	if (ret < 0)
 		fprintf(stderr, "as9888-calibd: magn-feed: %s\n", err);
 	if (ret == 1 && !magcal_solve(fit, &r)) {

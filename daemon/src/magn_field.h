@@ -7,7 +7,9 @@
  * magnetometer for it: with no consumer it sleeps as before (0 wake-ups).
  *
  * The samples (uncalibrated, uT) are kept in a file on a tmpfs (the
- * runtime directory), at most MAGN_FIELD_KEEP of them; every
+ * runtime directory), at most MAGN_FIELD_KEEP of them, kept by direction
+ * as magn-calibrate's are (magcal's store: a long time in one posture
+ * does not push out the directions covered before); every
  * MAGN_FIELD_FIT_EVERY new ones the fit library solves them, and the
  * record is rewritten only when the fit is good, it differs meaningfully
  * from the record's calibration (MAGN_FIELD_BIAS_STEP_NT,
@@ -21,6 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "magcal.h"
 #include "record.h"
 
 #define MAGN_FIELD_KEEP			300
@@ -53,6 +56,19 @@ double magn_field_reference_ut(const struct calib_magn *m);
  */
 bool magn_field_should_replace(const struct calib_magn *cur,
 			       const struct calib_magn *next, int64_t now);
+
+/*
+ * Add the sample @m (uT, uncalibrated), @a (the accelerometer's reading)
+ * to the samples file @path (locked; created 0600, refused unless ours and
+ * writable by us alone): the file's samples and this one go through
+ * @fit's store, an empty session, and what it keeps is written back,
+ * oldest first. 1 when MAGN_FIELD_FIT_EVERY samples came since the last
+ * fit (@fit then holds the store: solve it), 0 when not yet, -errno with
+ * why in @err.
+ */
+int magn_field_store_sample(const char *path, const double m[AS9888_AXES],
+			    const double a[AS9888_AXES],
+			    struct magcal_session *fit, char *err, size_t errlen);
 
 /*
  * The uncalibrated field (uT) from the driver's output @y (uT) when its

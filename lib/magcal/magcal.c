@@ -148,6 +148,32 @@ unsigned int magcal_count(const struct magcal_session *s)
 	return s->n;
 }
 
+unsigned int magcal_export(const struct magcal_session *s, double m[][3],
+			   double g[][3], unsigned int max)
+{
+	unsigned int order[MAGCAL_MAX_SAMPLES], i, j, n;
+
+	if (!s || !m)
+		return 0;
+	/* insertion sort by the order kept (C99 has no qsort with a context) */
+	for (i = 0; i < s->n; i++) {
+		for (j = i; j > 0 && s->s[order[j - 1]].seq > s->s[i].seq; j--)
+			order[j] = order[j - 1];
+		order[j] = i;
+	}
+	n = s->n < max ? s->n : max;
+	for (i = 0; i < n; i++) {
+		const struct sample *k = &s->s[order[i]];
+
+		memcpy(m[i], k->m, sizeof(m[i]));
+		if (g && k->has_g)
+			memcpy(g[i], k->g, sizeof(g[i]));
+		else if (g)
+			memset(g[i], 0, sizeof(g[i]));
+	}
+	return n;
+}
+
 static double dist3(const double a[3], const double b[3])
 {
 	return sqrt((a[0] - b[0]) * (a[0] - b[0]) +

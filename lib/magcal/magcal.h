@@ -199,6 +199,18 @@ int magcal_add(struct magcal_session *s, const double m_ut[3],
 unsigned int magcal_count(const struct magcal_session *s);
 
 /*
+ * The samples kept now, oldest first (the order they were kept in, which
+ * the consistency gate judges): at most @max readings into @m and their
+ * gravity into @g (zeros for a sample offered without; @g may be NULL).
+ * Offered again in this order to an empty session of the same
+ * configuration they are all kept, in the same order: a caller can keep
+ * the store between runs (the daemon's field mode keeps it in a file).
+ * Returns how many.
+ */
+unsigned int magcal_export(const struct magcal_session *s, double m[][3],
+			   double g[][3], unsigned int max);
+
+/*
  * Progress: the fraction (0..1) of the sphere of directions the kept
  * samples cover, seen from the current estimate of the centre.
  */

@@ -155,15 +155,20 @@ frc=$?
 check "7 hours old, the same board again (a change below 1 uT): not rewritten" \
 	eval '[ $frc -eq 0 ] && cmp -s "$rec" "$work/aged"'
 rm -f "$work/run/magn-samples"
-# 310 samples: the runtime directory keeps the last 300
+# 310 samples: the runtime directory keeps at most 300, by direction
+# (magcal's store: a sample within 2 uT of a kept one is not kept, so
+# random orientations leave a few out; test_magn_field checks that a long
+# time in one posture does not push the other directions out)
 "$here/magn_feed.py" "$sock" 310 5 125 -80 45 >"$work/feed" 2>&1
 frc=$?
 check "7 hours old, the hard iron 5 uT off: rewritten with the new estimate" eval '
 	[ $frc -eq 0 ] && ! cmp -s "$rec" "$work/aged" && hard_iron_near 1.5 125 -80 45'
 check "the calibration it replaced is kept as the previous record" \
 	cmp -s "$rec.previous" "$work/aged"
-check "the samples stay on the runtime directory, at most 300" eval '
-	[ "$(grep -vc "^#" "$work/run/magn-samples")" -eq 300 ]'
+kept=$(grep -vc "^#" "$work/run/magn-samples")
+echo "# $kept of 310 samples kept in the runtime directory"
+check "the samples stay on the runtime directory, at most 300 (most of 310 random orientations)" \
+	eval '[ "$kept" -le 300 ] && [ "$kept" -ge 250 ]'
 
 # a samples file another user planted (a shared socket directory) is
 # neither read nor written: the fit cannot be steered through it

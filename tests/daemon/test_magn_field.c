@@ -2,15 +2,18 @@
 /*
  * The field mode's decisions: when a refined calibration replaces the
  * record's (a meaningful change, at most once per MAGN_FIELD_MIN_AGE_S),
- * the driver's output turned back into the uncalibrated field, and the
- * magn-feed request line.
+ * the driver's output turned back into the uncalibrated field, the
+ * magn-feed request line, and the samples file keeping coverage.
  */
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -123,6 +126,97 @@ static void feed_line(void **state)
 	assert_true(r.kind == REQUEST_MAGN && r.json);
 }
 
+/* One feed through a session of its own, as cmd_magn_feed() makes */
+static int feed(const char *path, const double m[3], const double a[3])
+{
+	struct magcal_session *fit = magcal_new(NULL);
+	char err[512];
+	int ret;
+
+	assert_non_null(fit);
+	ret = magn_field_store_sample(path, m, a, fit, err, sizeof(err));
+	if (ret < 0)
+		fail_msg("%s", err);
+	magcal_free(fit);
+
+	return ret;
+}
+
+/* The file's samples (after its count), as read back */
+static unsigned int file_samples(const char *path, double (*v)[6],
+				 unsigned int max)
+{
+	char line[256];
+	unsigned int n = 0;
+	FILE *f = fopen(path, "r");
+
+	assert_non_null(f);
+	while (fgets(line, sizeof(line), f) && n < max)
+		if (line[0] != '#')
+			assert_int_equal(sscanf(line, "%lf %lf %lf %lf %lf %lf",
+						&v[n][0], &v[n][1], &v[n][2],
+						&v[n][3], &v[n][4], &v[n][5]), 6), n++;
+	fclose(f);
+
+	return n;
+}
+
+/*
+ * The samples file keeps coverage: a board turned through 80 directions,
+ * then held for 400 samples near one posture (its field wandering 15 deg
+ * about one direction), still has all 80 in the file, oldest first; the
+ * old file (the last 300 samples) had none of them left
+ */
+static void samples_keep_directions(void **state)
+{
+	static const double h[3] = { 120, -80, 45 }, up[3] = { 0, 0, 1024 };
+	static double v[MAGN_FIELD_KEEP + 8][6];
+	double dirs[80][3], m[3];
+	char dir[] = "/tmp/as9888-field-XXXXXX", path[64];
+	unsigned int i, n, fits = 0;
+	int k;
+
+	(void)state;
+	assert_non_null(mkdtemp(dir));
+	snprintf(path, sizeof(path), "%s/magn-samples", dir);
+	for (i = 0; i < 80; i++) {
+		/* a Fibonacci sphere: directions about 19 uT apart at 48 uT */
+		double z = 1 - (2 * i + 1) / 80.0, r = sqrt(1 - z * z);
+		double phi = i * M_PI * (3 - sqrt(5));
+
+		dirs[i][0] = h[0] + 48 * r * cos(phi);
+		dirs[i][1] = h[1] + 48 * r * sin(phi);
+		dirs[i][2] = h[2] + 48 * z;
+		fits += feed(path, dirs[i], up) == 1;
+	}
+	srand(7);
+	for (i = 0; i < 400; i++) {
+		/* within 15 deg of +x */
+		double t = 15 * M_PI / 180 * rand() / RAND_MAX;
+		double p = 2 * M_PI * rand() / RAND_MAX;
+
+		m[0] = h[0] + 48 * cos(t);
+		m[1] = h[1] + 48 * sin(t) * cos(p);
+		m[2] = h[2] + 48 * sin(t) * sin(p);
+		fits += feed(path, m, up) == 1;
+	}
+	/* a fit every 50 samples */
+	assert_int_equal(fits, 480 / MAGN_FIELD_FIT_EVERY);
+	n = file_samples(path, v, MAGN_FIELD_KEEP + 8);
+	assert_true(n <= MAGN_FIELD_KEEP);
+	/* the posture has its share too: more than the directions */
+	assert_true(n > 80 + 40);
+	for (i = 0; i < 80; i++)
+		for (k = 0; k < 3; k++)
+			if (fabs(v[i][k] - dirs[i][k]) > 0.001)
+				fail_msg("sample %u of the file is %.3f %.3f %.3f, not direction %u (%.3f %.3f %.3f): pushed out",
+					 i, v[i][0], v[i][1], v[i][2], i,
+					 dirs[i][0], dirs[i][1], dirs[i][2]);
+	assert_true(v[0][5] == 1024);
+	unlink(path);
+	rmdir(dir);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -130,6 +224,7 @@ int main(void)
 		cmocka_unit_test(reference_from_record),
 		cmocka_unit_test(uncorrect_inverts_driver),
 		cmocka_unit_test(feed_line),
+		cmocka_unit_test(samples_keep_directions),
 	};
 
 	return cmocka_run_group_tests_name("magn-field", tests, NULL, NULL);

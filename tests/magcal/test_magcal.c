@@ -465,6 +465,58 @@ static void test_store(void **state)
 	magcal_free(s);
 }
 
+/*
+ * The store exported oldest first, with gravity; offered again to an
+ * empty session it is kept whole and in the same order, and fits the same
+ */
+static void test_export(void **state)
+{
+	static double m[MAGCAL_MAX_SAMPLES][3], g[MAGCAL_MAX_SAMPLES][3];
+	static double m2[MAGCAL_MAX_SAMPLES][3], g2[MAGCAL_MAX_SAMPLES][3];
+	struct magcal_result r, r2;
+	struct magcal_session *s, *t;
+	struct board b = board_a;
+	double d[3], x[3];
+	unsigned int n, i;
+
+	(void)state;
+	rng_state = 23;
+	b.noise = 0.3;
+	s = magcal_new(NULL);
+	assert_non_null(s);
+	for (i = 0; i < 900; i++) {
+		double up[3] = { 0, 0, i };
+
+		direction(i < 300 ? 180 : 30, d);
+		reading(&b, d, 48, x);
+		assert_true(magcal_add(s, x, up) >= 0);
+	}
+	n = magcal_export(s, m, g, MAGCAL_MAX_SAMPLES);
+	assert_int_equal(n, magcal_count(s));
+	/* oldest first: the gravity's z here is when it was offered */
+	for (i = 1; i < n; i++)
+		assert_true(g[i][2] > g[i - 1][2]);
+	/* some of the first 300 (the whole sphere) are kept, and the newest */
+	assert_true(g[0][2] < 300);
+	assert_true(g[n - 1][2] == 899);
+	assert_int_equal(magcal_export(s, m, NULL, 5), 5);
+
+	t = magcal_new(NULL);
+	assert_non_null(t);
+	for (i = 0; i < n; i++)
+		assert_int_equal(magcal_add(t, m[i], g[i]), 1);
+	assert_int_equal(magcal_export(t, m2, g2, MAGCAL_MAX_SAMPLES), n);
+	assert_memory_equal(m, m2, n * sizeof(m[0]));
+	assert_memory_equal(g, g2, n * sizeof(g[0]));
+	assert_int_equal(magcal_solve(s, &r), 0);
+	assert_int_equal(magcal_solve(t, &r2), 0);
+	assert_int_equal(r.status, r2.status);
+	for (i = 0; i < 3; i++)
+		assert_true(fabs(r.bias[i] - r2.bias[i]) < 1e-9);
+	magcal_free(s);
+	magcal_free(t);
+}
+
 /* A random rotation (sensor to world), uniform */
 static void rotation(double r[3][3])
 {
@@ -683,6 +735,7 @@ int main(void)
 		cmocka_unit_test(test_progress),
 		cmocka_unit_test(test_add),
 		cmocka_unit_test(test_store),
+		cmocka_unit_test(test_export),
 		cmocka_unit_test(test_gate),
 		cmocka_unit_test(test_degenerate),
 		cmocka_unit_test(test_split_apply),
