@@ -12,7 +12,11 @@
 #   2 dt-bindings: iio: imu: Add ALSEN AS9888 (+ MAINTAINERS entry)
 #   3.. one patch per stage of upstream/stages/ (the driver in steps, then
 #       its documentation; scripts/upstream-stages.sh makes each stage's
-#       tree, the last one is this repository's files)
+#       tree, the last one is this repository's files). A stage directory
+#       holding a file named "rfc" is sent as "[RFC PATCH n/m]"
+#   0   the cover letter: upstream/cover-letter (its subject, a blank line,
+#       its text) in git format-patch's cover letter, before the shortlog
+#       and the diffstat git writes
 #
 # The MAINTAINERS entry grows with the files of each patch, file by file
 # (checkpatch asks every patch that adds files to update MAINTAINERS). What
@@ -23,7 +27,12 @@
 # Checks, one line each, any problem fails the script:
 #   stages      every stage's tree can be made (a change to the repository
 #               inside a hunk of a stage's changes.patch names the stage)
-#   am          git am of the series onto the pristine 7.2 tree
+#   cover       the cover letter exists, has no placeholder left, and its
+#               text names every patch by its subject (on a line of
+#               upstream/cover-letter; the shortlog git adds is not
+#               counted), and every RFC stage's patch says "[RFC PATCH"
+#   am          git am of the series (the cover letter left out, as b4
+#               and git am do) onto the pristine 7.2 tree
 #   identical   the series applied in full equals the repository's files,
 #               byte for byte
 #   checkpatch  scripts/checkpatch.pl --strict on every patch (commit
@@ -268,8 +277,43 @@ for s in "${STAGE_NAMES[@]}"; do
 done
 
 rm -f "$OUT"/*.patch
-G format-patch -q --no-signature --zero-commit -o "$OUT" as9888-base..as9888
-mapfile -t PATCHES < <(find "$OUT" -maxdepth 1 -name '0*.patch' | sort)
+G format-patch -q --no-signature --zero-commit --cover-letter -o "$OUT" as9888-base..as9888
+COVER="$OUT/0000-cover-letter.patch"
+mapfile -t PATCHES < <(find "$OUT" -maxdepth 1 -name '0*.patch' ! -name "${COVER##*/}" | sort)
+
+# --- RFC patches and the cover letter ----------------------------------------
+# Patches 1 and 2 are the bindings; stage k (from 0) is patch k + 3
+rfc=()
+for ((k = 0; k < ${#STAGE_NAMES[@]}; k++)); do
+	[ -e "$REPO/upstream/stages/${STAGE_NAMES[$k]}/rfc" ] || continue
+	p="${PATCHES[$((k + 2))]}"
+	sed -i '0,/^Subject: \[PATCH /s//Subject: [RFC PATCH /' "$p"
+	rfc+=("$p")
+done
+CL_SRC="$REPO/upstream/cover-letter"
+python3 - "$COVER" "$CL_SRC" <<-'EOF'
+	import os, sys
+	path, src = sys.argv[1:3]
+	subject, _, body = open(src).read().partition("\n\n")
+	text = open(path).read()
+	text = text.replace("*** SUBJECT HERE ***", subject.strip(), 1)
+	text = text.replace("*** BLURB HERE ***", body.rstrip("\n"), 1)
+	open(path + ".as9888.tmp", "w").write(text)
+	os.replace(path + ".as9888.tmp", path)
+EOF
+bad=""
+! grep -q '\*\*\* .* HERE \*\*\*' "$COVER" || bad="$bad a placeholder is left;"
+while IFS= read -r subj; do
+	grep -qF -- "$subj" "$CL_SRC" || bad="$bad it does not name \"$subj\";"
+done < <(G log --reverse --format=%s as9888-base..as9888)
+for p in "${rfc[@]}"; do
+	grep -q '^Subject: \[RFC PATCH ' "$p" || bad="$bad ${p##*/} is not marked RFC;"
+done
+if [ -z "$bad" ]; then
+	result cover ok "${COVER##*/} names the ${#PATCHES[@]} patches; RFC:$(for p in "${rfc[@]}"; do printf ' %s' "${p##*/}"; done)"
+else
+	result cover FAIL "${COVER##*/}:$bad"
+fi
 
 # --- am ---------------------------------------------------------------------
 G checkout -q -f -B as9888-am as9888-base
