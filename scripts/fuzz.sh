@@ -46,7 +46,7 @@ fi
 [ -e "$top/tools/include/linux/kconfig.h" ] &&
 	flags+=(-include "$top/tools/include/linux/kconfig.h")
 flags+=(-I"$top/tools/include" -I"$top/drivers/iio/imu/as9888"
-	-I"$top/daemon/src" -I"$top/tests/model" -I"$top/tests/fuzz"
+	-I"$top/daemon/src" -I"$top/lib/iio" -I"$top/tests/model" -I"$top/tests/fuzz"
 	-I"$top/hal/include" -I"$top/hal/src")
 src=$top/daemon/src
 
@@ -57,9 +57,9 @@ sources() {
 	unit) echo "$top/tests/model/as9888_unit.c" ;;
 	request) echo "$src/request.c" ;;
 	uevent) echo "$src/uevent.c $src/uevent_filter.c" ;;
-	iio_scan) echo "$src/iio_scan.c" ;;
+	iio_scan) echo "$top/lib/iio/iio_scan.c" ;;
 	iio_value) echo "$src/iio_value.c ${calib[*]}" ;;
-	hal_text) echo "$top/hal/src/hal_config.c $top/hal/src/hal_layout.c $top/hal/src/hal_attr.c $top/hal/src/hal_stream.c $src/iio_scan.c" ;;
+	hal_text) echo "$top/hal/src/hal_config.c $top/hal/src/hal_layout.c $top/hal/src/hal_attr.c $top/hal/src/hal_stream.c $top/lib/iio/*.c" ;;
 	*) echo "fuzz: unknown target $1 (${all[*]})" >&2; return 1 ;;
 	esac
 }

@@ -295,9 +295,7 @@ static int put_dac(struct ftest_ctx *x, const uint8_t dac[AS9888_AXES],
 static int find_trigger(struct iio_test_dev *d, const char *current)
 {
 	const char *base = strrchr(d->dir, '/');
-	char bus[IIO_PATH_MAX], name[IIO_NAME_MAX], want[IIO_NAME_MAX];
-	struct dirent *de;
-	DIR *dir;
+	char want[IIO_NAME_MAX];
 	int ret;
 
 	snprintf(want, sizeof(want), "%s-dev%s", IIO_CHIP_NAME,
@@ -313,27 +311,9 @@ static int find_trigger(struct iio_test_dev *d, const char *current)
 		return 0;
 	}
 
-	snprintf(bus, sizeof(bus), "%s/bus/iio/devices", iio_sysfs_root());
-	dir = opendir(bus);
-	if (!dir)
-		return -errno;
-	ret = -ENOENT;
-	while ((de = readdir(dir))) {
-		char tdir[IIO_PATH_MAX];
-
-		if (strncmp(de->d_name, IIO_TRIGGER_PREFIX,
-			    strlen(IIO_TRIGGER_PREFIX)) ||
-		    snprintf(tdir, sizeof(tdir), "%s/%s", bus, de->d_name) >=
-		    (int)sizeof(tdir))
-			continue;
-		if (iio_read_attr(tdir, "name", name, sizeof(name)) > 0 &&
-		    !strcmp(name, want)) {
-			snprintf(d->trigger, sizeof(d->trigger), "%s", name);
-			ret = 0;
-			break;
-		}
-	}
-	closedir(dir);
+	ret = iio_find_trigger(iio_sysfs_root(), want);
+	if (!ret)
+		snprintf(d->trigger, sizeof(d->trigger), "%s", want);
 
 	return ret;
 }

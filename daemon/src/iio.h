@@ -15,9 +15,9 @@
 
 #include "iio_attr.h"
 #include "iio_root.h"
+#include "iio_sysfs.h"
 #include "record.h"
 
-#define IIO_PATH_MAX	512
 /* Longest attribute value the daemon reads or writes */
 #define IIO_ATTR_MAX	128
 /* Longest message of the functions below that return one */
@@ -40,8 +40,6 @@
  * numbered by the NVMEM core)
  */
 #define IIO_EEPROM_PREFIX	"as9888-eeprom"
-#define IIO_DEVICE_PREFIX	"iio:device"
-#define IIO_TRIGGER_PREFIX	"trigger"
 
 /*
  * The sysfs directory of an AS9888 accelerometer IIO device
@@ -53,34 +51,10 @@ int iio_find_device(const char *devpath, char *out, size_t size);
 
 /*
  * The same chip's magnetometer IIO device (IIO_MAGN_NAME) for the
- * accelerometer device at @accel_dir: the sibling iio:deviceM below the
- * bus device that holds it (@accel_dir/.., where the bus link
- * /sys/bus/iio/devices/iio:deviceN leads). Its directory goes into @out,
- * named beside @accel_dir (/sys/bus/iio/devices/iio:deviceM for a bus
- * link), or as @accel_dir/../iio:deviceM while its bus link is not there
- * yet. When there is none, @parent, when not NULL, receives the bus
- * device's directory, for messages. Returns 0, -ENOENT when there is no
- * such device, or -errno when @accel_dir cannot be resolved.
+ * accelerometer device at @accel_dir, as iio_find_sibling() finds it
  */
 int iio_find_magn(const char *accel_dir, char *out, size_t size,
 		  char *parent, size_t parent_size);
-
-/*
- * A sysfs attribute @name below @dir: read without its trailing newline
- * (returns the length) or written whole (returns 0); -errno on failure.
- */
-int iio_read_attr(const char *dir, const char *name, char *buf, size_t size);
-int iio_write_attr(const char *dir, const char *name, const char *value);
-
-/*
- * The same below a directory opened once with iio_dir_open() (an O_PATH
- * descriptor, or -errno): each access then resolves @name alone, not the
- * directory's path through its bus link again, which costs most of an
- * access to a sysfs attribute on a slow system
- */
-int iio_dir_open(const char *dir);
-int iio_read_attr_at(int dfd, const char *name, char *buf, size_t size);
-int iio_write_attr_at(int dfd, const char *name, const char *value);
 
 /*
  * The driver's debugfs file @name of the device at @dir

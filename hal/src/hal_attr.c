@@ -1,88 +1,35 @@
 // SPDX-License-Identifier: GPL-2.0
-/* One sysfs attribute read or written whole (hal_attr.h) */
+/* One sysfs attribute read or written whole, with a message (hal_attr.h) */
 #include <errno.h>
-#include <fcntl.h>
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "hal_attr.h"
-
-static int attr_path(const char *dir, const char *name, char *path,
-		     size_t len, char *err, size_t errlen)
-{
-	if ((size_t)snprintf(path, len, "%s/%s", dir, name) >= len) {
-		snprintf(err, errlen, "%s/%s: path too long", dir, name);
-		return -ENAMETOOLONG;
-	}
-	return 0;
-}
+#include "iio_sysfs.h"
 
 int hal_attr_read(const char *dir, const char *name, char *buf, size_t len,
 		  char *err, size_t errlen)
 {
-	char path[PATH_MAX];
-	ssize_t n;
-	int fd, ret;
+	int ret = iio_read_attr(dir, name, buf, len);
 
-	ret = attr_path(dir, name, path, sizeof(path), err, errlen);
-	if (ret)
-		return ret;
-	fd = open(path, O_RDONLY | O_CLOEXEC);
-	if (fd < 0) {
-		ret = -errno;
-		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-		return ret;
-	}
-	n = read(fd, buf, len - 1);
-	ret = n < 0 ? -errno : 0;
-	close(fd);
-	if (ret) {
-		snprintf(err, errlen, "%s: cannot read: %s", path, strerror(-ret));
-		return ret;
-	}
-	if ((size_t)n == len - 1) {
-		snprintf(err, errlen, "%s: longer than %zu bytes", path, len - 2);
-		return -EOVERFLOW;
-	}
-	if (memchr(buf, '\0', (size_t)n)) {
-		snprintf(err, errlen, "%s: holds a NUL byte", path);
-		return -EINVAL;
-	}
-	buf[n] = '\0';
-	if (n && buf[n - 1] == '\n')
-		buf[n - 1] = '\0';
-	return 0;
+	if (ret >= 0)
+		return 0;
+	snprintf(err, errlen, "%s/%s: cannot read: %s", dir, name,
+		 ret == -EOVERFLOW ? "longer than its buffer" :
+		 ret == -EINVAL ? "holds a NUL byte" : strerror(-ret));
+	return ret;
 }
 
 int hal_attr_write(const char *dir, const char *name, const char *value,
 		   char *err, size_t errlen)
 {
-	char path[PATH_MAX];
-	size_t len = strlen(value);
-	ssize_t n;
-	int fd, ret;
+	int ret = iio_write_attr(dir, name, value);
 
-	ret = attr_path(dir, name, path, sizeof(path), err, errlen);
 	if (ret)
-		return ret;
-	fd = open(path, O_WRONLY | O_TRUNC | O_CLOEXEC);
-	if (fd < 0) {
-		ret = -errno;
-		snprintf(err, errlen, "%s: cannot open for writing: %s", path,
-			 strerror(errno));
-		return ret;
-	}
-	n = write(fd, value, len);
-	ret = n < 0 ? -errno : (size_t)n != len ? -EIO : 0;
-	if (close(fd) && !ret)
-		ret = -errno;
-	if (ret)
-		snprintf(err, errlen, "%s: writing \"%s\" failed: %s", path, value,
-			 strerror(-ret));
+		snprintf(err, errlen, "%s/%s: writing \"%s\" failed: %s", dir, name,
+			 value, strerror(-ret));
 	return ret;
 }
 

@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hal_attr.h"
 #include "hal_find.h"
+#include "iio_sysfs.h"
 
 /* The name of the directory @path's real path is in ("1-000c") */
 static int parent_name(const char *path, char *name, size_t len)
@@ -47,11 +47,20 @@ static int device_number(const char *entry)
 	return *end || n < 0 || n > 65535 ? -1 : (int)n;
 }
 
+/* @dir's IIO device is named @want */
+static int named(const char *dir, const char *want)
+{
+	char name[64];
+
+	return iio_read_attr(dir, "name", name, sizeof(name)) > 0 &&
+	       !strcmp(name, want);
+}
+
 int hal_find_devices(const char *sysfs, const char *dev, const char *parent,
 		     const char *trigger, struct hal_devices *out,
 		     char *err, size_t errlen)
 {
-	char bus[200], path[PATH_MAX], name[64], chip[64] = "", ignored[8];
+	char bus[200], path[PATH_MAX], chip[64] = "";
 	struct hal_devices found;
 	int accel_n = -1, n;
 	struct dirent *e;
@@ -70,9 +79,7 @@ int hal_find_devices(const char *sysfs, const char *dev, const char *parent,
 	while ((e = readdir(d))) {
 		n = device_number(e->d_name);
 		snprintf(path, sizeof(path), "%s/%s", bus, e->d_name);
-		if (n < 0 || hal_attr_read(path, "name", name, sizeof(name),
-					   ignored, sizeof(ignored)) ||
-		    strcmp(name, "as9888-accel") ||
+		if (n < 0 || !named(path, "as9888-accel") ||
 		    parent_name(path, chip, sizeof(chip)) ||
 		    (*parent && strcmp(chip, parent)))
 			continue;
@@ -83,56 +90,33 @@ int hal_find_devices(const char *sysfs, const char *dev, const char *parent,
 				 "%s/iio:device%d", dev, n);
 		}
 	}
+	closedir(d);
 	if (accel_n < 0) {
-		closedir(d);
 		snprintf(err, errlen, "%s: no IIO device named as9888-accel%s%s (is the as9888 driver loaded?)",
 			 bus, *parent ? " below bus device " : "", parent);
 		return -ENODEV;
 	}
 	parent_name(found.accel, chip, sizeof(chip));
 	/* its sibling as9888-magn */
-	rewinddir(d);
-	while ((e = readdir(d))) {
-		char mine[64];
-
-		n = device_number(e->d_name);
-		snprintf(path, sizeof(path), "%s/%s", bus, e->d_name);
-		if (n < 0 || hal_attr_read(path, "name", name, sizeof(name),
-					   ignored, sizeof(ignored)) ||
-		    strcmp(name, "as9888-magn") ||
-		    parent_name(path, mine, sizeof(mine)) || strcmp(mine, chip))
-			continue;
-		copy(found.magn, sizeof(found.magn), path);
-		snprintf(found.magn_node, sizeof(found.magn_node), "%s/iio:device%d",
-			 dev, n);
-		break;
-	}
-	closedir(d);
-	if (!*found.magn) {
+	if (iio_find_sibling(found.accel, "as9888-magn", path, sizeof(path),
+			     NULL, 0) ||
+	    (n = device_number(strrchr(path, '/') + 1)) < 0) {
 		snprintf(err, errlen, "%s: no as9888-magn beside as9888-accel below bus device %s",
 			 bus, chip);
 		return -ENODEV;
 	}
+	copy(found.magn, sizeof(found.magn), path);
+	snprintf(found.magn_node, sizeof(found.magn_node), "%s/iio:device%d",
+		 dev, n);
 	if (*trigger) {
 		snprintf(found.trigger, sizeof(found.trigger), "%s", trigger);
 	} else {
 		/* the data-ready trigger, when the chip has its interrupt wired */
-		d = opendir(bus);
-		while (d && (e = readdir(d))) {
-			char want[32];
+		char want[32];
 
-			snprintf(path, sizeof(path), "%s/%s", bus, e->d_name);
-			snprintf(want, sizeof(want), "as9888-dev%d", accel_n);
-			if (!strncmp(e->d_name, "trigger", 7) &&
-			    !hal_attr_read(path, "name", name, sizeof(name),
-					   ignored, sizeof(ignored)) &&
-			    !strcmp(name, want)) {
-				snprintf(found.trigger, sizeof(found.trigger), "%s", want);
-				break;
-			}
-		}
-		if (d)
-			closedir(d);
+		snprintf(want, sizeof(want), "as9888-dev%d", accel_n);
+		if (!iio_find_trigger(sysfs, want))
+			snprintf(found.trigger, sizeof(found.trigger), "%s", want);
 	}
 	*out = found;
 	return 0;

@@ -58,7 +58,7 @@ static void attributes(void **state)
 			 -EOVERFLOW);
 	assert_int_equal(hal_attr_read(f->dev, "missing", buf, sizeof(buf), err, sizeof(err)),
 			 -ENOENT);
-	assert_non_null(strstr(err, "/missing: cannot open"));
+	assert_non_null(strstr(err, "/missing: cannot read"));
 }
 
 static void mount_matrix(void **state)

@@ -102,7 +102,7 @@ targets = json.loads(subprocess.run(["meson", "introspect", "--targets", b],
     capture_output=True, check=True).stdout)
 built = set()
 for t in targets:
-    if t["name"] in ("as9888-calibd", "calibd", "as9888_calib", "magcal", "as9888magn", "as9888hal"):
+    if t["name"] in ("as9888-calibd", "calibd", "as9888_calib", "as9888iio", "magcal", "as9888magn", "as9888hal"):
         for s in t["target_sources"]:
             built |= {os.path.relpath(f, src) for f in s["sources"]}
 bp = open(src + "/contrib/android/Android.bp").read()

@@ -36,12 +36,14 @@ int iio_attr_open(struct iio_attr *a, int dfd, const char *name,
 void iio_attr_close(struct iio_attr *a);
 
 /*
- * Its value now, from the start, without its trailing newline, as
- * iio_read_attr(): the length, or -errno
+ * Its value now, from the start, without its trailing newline (and the
+ * NUL some of the IIO core's attributes end in): the length, -EOVERFLOW
+ * when it does not fit in @size with its newline, -EINVAL when it holds
+ * a NUL byte, or -errno
  */
 int iio_attr_read(const struct iio_attr *a, char *buf, size_t size);
 
-/* Write @value whole, as iio_write_attr(): 0 or -errno */
+/* Write @value whole: 0 or -errno (-EIO: written in part) */
 int iio_attr_write(const struct iio_attr *a, const char *value);
 
 #endif

@@ -48,9 +48,14 @@ int iio_attr_read(const struct iio_attr *a, char *buf, size_t size)
 		n = read(a->fd, buf, size - 1);
 	if (n < 0)
 		return -errno;
+	/* a value cut short is no value: the buffer must hold it whole */
+	if ((size_t)n == size - 1)
+		return -EOVERFLOW;
 	/* some of the IIO core's end in a NUL too (current_timestamp_clock) */
 	while (n > 0 && (buf[n - 1] == '\n' || buf[n - 1] == '\0'))
 		n--;
+	if (memchr(buf, '\0', (size_t)n))
+		return -EINVAL;
 	buf[n] = '\0';
 
 	return (int)n;
