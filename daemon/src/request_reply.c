@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: GPL-2.0
 /* Run a command for a client, its output framed as the daemon's reply. */
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <unistd.h>
 
+#include "anon_file.h"
 #include "request.h"
 #include "request_reply.h"
 
@@ -55,6 +57,25 @@ static void send_status(int fd, int status, int flags)
 	send_all(fd, line, (size_t)len, flags);
 }
 
+/*
+ * Where a reply's files go without memfd_create(): $RUNTIME_DIRECTORY
+ * (systemd's, a tmpfs), else the record's directory, the one directory
+ * the daemon may always write (on Android, with the record on persist)
+ */
+static void reply_dir(const struct cli_opts *o, char *dir, size_t size)
+{
+	const char *run = getenv("RUNTIME_DIRECTORY");
+	const char *slash = strrchr(o->record_path, '/');
+
+	if (run && *run && !strchr(run, ':'))
+		snprintf(dir, size, "%s", run);
+	else if (!slash)
+		snprintf(dir, size, ".");
+	else
+		snprintf(dir, size, "%.*s", slash == o->record_path ? 1 :
+			 (int)(slash - o->record_path), o->record_path);
+}
+
 int request_reply_run(int fd, int (*fn)(const struct cli_opts *o),
 		      const struct cli_opts *o, bool json)
 {
@@ -63,12 +84,15 @@ int request_reply_run(int fd, int (*fn)(const struct cli_opts *o),
 
 	setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof(tv));
 	if (json) {
+		char dir[PATH_MAX];
+
 		/* kept apart until the status says which one the client gets */
-		out = memfd_create("as9888-reply-json", MFD_CLOEXEC);
-		err = memfd_create("as9888-reply-errors", MFD_CLOEXEC);
-		if (out < 0 || err < 0) {
-			dprintf(fd, "as9888-calibd: cannot buffer the reply: %s\n",
-				strerror(errno));
+		reply_dir(o, dir, sizeof(dir));
+		out = anon_file_open("as9888-reply-json", dir);
+		err = out < 0 ? out : anon_file_open("as9888-reply-errors", dir);
+		if (err < 0) {
+			dprintf(fd, "as9888-calibd: cannot buffer the reply (memfd, or a file without a name in %s): %s\n",
+				dir, strerror(-err));
 			send_status(fd, 1, 0);
 			return 1;
 		}
