@@ -78,6 +78,7 @@ failed=0
 skipped=0
 failures=()
 run_start=$(date +%s)
+detail=$(mktemp)
 
 # A stage counts as one test, unless it counts its own (counted=1). A stage
 # that fails without counting a failure of its own counts one more.
@@ -185,6 +186,9 @@ counted_run() {
 	shift 2
 	"$@" 2>&1 | tee "$log"
 	rc=${PIPESTATUS[0]}
+	# what failed, repeated at the end of the run (a log cut to its tail)
+	grep -E '(^|\] )not ok |WARNING: |ERROR: ' "$log" | head -n 20 |
+		sed "s|^|  $(basename "$log"): |" >>"$detail"
 	read -r ok fail skip < <(sed -n "s/^$prefix\([0-9]*\) passed, \([0-9]*\) failed\(, \([0-9]*\) skipped\)\{0,1\}\( .*\)\{0,1\}\$/\1 \2 \4/p" "$log" |
 		awk '{ p += $1; f += $2; s += $3 } END { print p + 0, f + 0, s + 0 }')
 	# no test ran: the stage fails (stage() counts it)
@@ -276,6 +280,11 @@ if [ "$what" = all ] && [ "$skipped" -gt 0 ]; then
 		failures+=("skipped checks outside tests/skips-allowed")
 	fi
 fi
+if [ ${#failures[@]} -gt 0 ] && [ -s "$detail" ]; then
+	echo "what failed (the first 20 lines of each counted stage's log):"
+	cat "$detail"
+fi
+rm -f "$detail"
 [ ${#failures[@]} -eq 0 ] || printf 'failed: %s\n' "${failures[@]}"
 # every failed stage is at least one failure (stage()), so the line and
 # the exit status agree with the list above

@@ -377,6 +377,9 @@ pack_initramfs() {
 	cp -r "$GUEST/tests" "$root/tests/tests"
 	# AS9888_VM_ONLY="10-probe 90-spi": run only these test files
 	printf '%s\n' "${FILES[@]}" >"$root/tests/only"
+	# AS9888_VM_SOAK=1 (scripts/vm-soak.sh): the repeated tests at their
+	# soak depth (62-bind-50: 50 cycles of each kind, not 10)
+	[ "${AS9888_VM_SOAK:-0}" = 0 ] || echo 1 >"$root/tests/soak"
 	chmod +x "$root/init" "$root/tests/run-all.sh"
 	(cd "$root" && find . -print0 | cpio --null -o -H newc --quiet | gzip -1) >"$out"
 	INITRD="$out"
@@ -518,6 +521,13 @@ for k in "${WANT[@]}"; do
 	else
 		echo "$k: 0 passed, 1 failed (the bench of $k ended without a result)"
 		FAILED=1
+	fi
+done
+# the failures again, last, where a log cut to its tail still shows them
+for k in "${WANT[@]}"; do
+	if grep -qE '^\[[0-9.]+\] not ok |WARNING: ' "$VM_DIR/report-$k" 2>/dev/null; then
+		echo "failures of $k:"
+		grep -E '^\[[0-9.]+\] not ok |WARNING: ' "$VM_DIR/report-$k" | head -n 20
 	fi
 done
 log "done in $(since "$T_START")"

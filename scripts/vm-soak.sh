@@ -62,7 +62,7 @@ for ((r = 1; r <= runs; r++)); do
 		hog_pid=$!
 	fi
 	t=$(now)
-	if "$AS9888_REPO/scripts/vm-run.sh" "$@" >"$log" 2>&1; then
+	if AS9888_VM_SOAK=1 "$AS9888_REPO/scripts/vm-run.sh" "$@" >"$log" 2>&1; then
 		verdict=pass
 	else
 		verdict=FAIL

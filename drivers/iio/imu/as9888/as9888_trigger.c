@@ -215,11 +215,11 @@ static void as9888_trig_gap(struct as9888_chip *chip)
 
 /*
  * Start the sample due at @slot, for every device whose next sample is due
- * by then, or by now when the sample is late, or within half the shortest
- * period of the trigger's devices after that: a slower device's sample
- * joins the faster device's nearest one, so that the two schedules fall
- * into step instead of each taking the chip on its own, but it is never
- * taken a whole sample of the faster device early. Each device's next
+ * by then, or by now when the sample is late; a device no faster than one
+ * of those joins it when its own sample is due within half that device's
+ * period, so that the two schedules fall into step instead of each taking
+ * the chip on its own. A faster device is never taken early: half a
+ * slower device's period would be most of its own. Each device's next
  * sample is due a period after this one was due, not after @slot: taking
  * a sample early or late moves it, not the device's rate. With chip->lock
  * held and the trigger IDLE.
@@ -227,7 +227,7 @@ static void as9888_trig_gap(struct as9888_chip *chip)
 static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 {
 	ktime_t by = max(slot, ktime_get());
-	u64 period, early = U64_MAX;
+	u64 period, shortest = U64_MAX;
 	unsigned long take = 0;
 	unsigned int id;
 	ktime_t now;
@@ -235,11 +235,20 @@ static int as9888_trig_measure(struct as9888_chip *chip, ktime_t slot)
 
 	lockdep_assert_held(&chip->lock);
 
-	for_each_set_bit(id, &chip->trig_users, AS9888_SENSORS)
-		early = min(early, as9888_trig_period_ns(chip, id) / 2);
+	/* The devices due, and the shortest period among them */
+	for_each_set_bit(id, &chip->trig_users, AS9888_SENSORS) {
+		if (ktime_after(chip->trig_due[id], by))
+			continue;
+		take |= BIT(id);
+		shortest = min(shortest, as9888_trig_period_ns(chip, id));
+	}
+	if (!take)
+		return 0;
 
 	for_each_set_bit(id, &chip->trig_users, AS9888_SENSORS)
-		if (ktime_before(chip->trig_due[id], ktime_add_ns(by, early)))
+		if (as9888_trig_period_ns(chip, id) >= shortest &&
+		    ktime_before(chip->trig_due[id],
+				 ktime_add_ns(by, shortest / 2)))
 			take |= BIT(id);
 
 	/* Before the MS write: INT1 must find the sample MEASURING */
@@ -558,9 +567,9 @@ static int as9888_buffer_preenable(struct iio_dev *indio_dev)
 
 /*
  * The trigger runs (as9888_trig_set_state()); from now on it takes this
- * device's samples too: the first one at once, or with the other device's
- * next one when that comes within a period, so that the two are in step
- * from the start. The first sample starts here, in the process enabling
+ * device's samples too: with the other device's next one when that is
+ * overdue or comes within a period, else at once, so that the two are in
+ * step from the start. The first sample starts here, in the process enabling
  * the buffer, so that a failure to start it fails the enable.
  */
 static int as9888_buffer_postenable(struct iio_dev *indio_dev)
@@ -577,11 +586,14 @@ static int as9888_buffer_postenable(struct iio_dev *indio_dev)
 
 	guard(mutex)(&chip->lock);
 
-	/* The other device's next sample, if any */
+	/*
+	 * The other device's next sample, if any, also when it is overdue:
+	 * the two share it, and from then on their schedules are one
+	 */
 	due = as9888_trig_slot(chip);
 	now = ktime_get();
 	period = as9888_trig_period_ns(chip, id);
-	if (ktime_before(due, now) || ktime_after(due, ktime_add_ns(now, period)))
+	if (ktime_after(due, ktime_add_ns(now, period)))
 		due = now;
 	chip->trig_users |= BIT(id);
 	chip->trig_due[id] = due;
