@@ -12,7 +12,7 @@ const char *remedy_record(int errnum)
 {
 	switch (errnum) {
 	case EACCES:
-		return "run as root (the record and its directory are root's), or ask the daemon: as9888-calibd request status|check|recalibrate|rollback";
+		return "run as root (the record and its directory are root's), or ask the daemon: as9888-calibd request status (check, recalibrate and rollback: root or the daemon's --operator-group)";
 	case EROFS:
 		return "the file system is read-only: give --record a path on a writable one (the state directory, /var/lib/as9888 by default)";
 	default:
