@@ -913,6 +913,8 @@ static void consistency(const struct magcal_session *s, const bool *use,
 	    norm3(x + 1) * DEG_PER_RAD <= MAX_TURN_DEG)
 		memcpy(theta, x + 1, sizeof(theta));
 	r->turn_deg = norm3(theta) * DEG_PER_RAD;
+	for (j = 0; j < 3; j++)
+		r->turn[j] = theta[j] * DEG_PER_RAD;
 	for (i = 0; i < nd; i++) {
 		double v = gp[i] + cg[i][0] * theta[0] + cg[i][1] * theta[1] +
 			   cg[i][2] * theta[2];

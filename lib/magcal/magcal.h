@@ -147,6 +147,10 @@ struct magcal_config {
  *		makes the dip constant over the orientations (an asymmetric
  *		soft iron), degrees, at most 5 (0: none found, or none that
  *		small); judged by the gate, not applied: @w stays symmetric
+ * @turn:	that turn as a rotation vector, degrees (its length is
+ *		@turn_deg): the rotation by @turn of W (m - b) is the field
+ *		in the accelerometer's frame. Not stored or applied by the
+ *		daemon yet (issue 39, point 5); the sweep measures it
  */
 struct magcal_result {
 	enum magcal_status status;
@@ -165,6 +169,7 @@ struct magcal_result {
 	double drift_ut;
 	double dip_drift_deg;
 	double turn_deg;
+	double turn[3];
 };
 
 struct magcal_session;

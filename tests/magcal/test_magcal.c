@@ -610,6 +610,9 @@ static void test_gate(void **state)
 	r = session_in_time(0, 0, 3);
 	assert_int_equal(r.status, MAGCAL_OK);
 	assert_true(fabs(r.turn_deg - 3) < 0.3);
+	/* as a rotation: the one that turns the field back, about X */
+	assert_true(fabs(r.turn[0] + 3) < 0.3 && fabs(r.turn[1]) < 0.3 &&
+		    fabs(r.turn[2]) < 0.3);
 
 	/* 1.5 uT: small enough for the residual (rms under 1.5 uT) */
 	r = session_in_time(1.5, 0, 0);
