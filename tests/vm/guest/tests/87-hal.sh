@@ -6,16 +6,30 @@
 #  - the sensor list: three sensors, the accelerometer's minDelay from
 #    sampling_frequency_available (400 Hz: 2500 us);
 #  - accelerometer and magnetometer together at unequal rates (100 + 10,
-#    50 + 20 Hz): each delivers its rate within 10 % (counted from the
-#    events' own timestamps), event times strictly increase per sensor and
-#    are CLOCK_BOOTTIME's (current_timestamp_clock): none later than its
-#    arrival at the HAL, the median arrival within 20 ms (a single event
-#    may wait longer on a busy TCG host: the longest is printed, no budget);
+#    50 + 20 Hz): while they run, each device's sampling_frequency is the
+#    asked rate (the HAL passes every sample at these rates: none needs
+#    thinning); each delivers, counted from the events' own timestamps,
+#    never more than 10 % over its rate, and at least 60 % of it. A TCG
+#    guest on a busy host delivers less than asked, never more (as
+#    69-trigger-rates), so a rate 10 to 40 % under is logged as a
+#    diagnostic, not failed; under 60 % fails, for what a broken HAL
+#    delivers: half or less (every other sample dropped, or the device set
+#    to its next lower rate: 50 of 100, 10 of 20, 20 of 50 Hz). Event
+#    times strictly increase per sensor and are CLOCK_BOOTTIME's
+#    (current_timestamp_clock): none later than its arrival at the HAL (an
+#    event stamped on another clock is hours, or years, off). The median
+#    arrival beyond 20 ms is logged; beyond 250 ms it fails (a HAL holding
+#    events back with no report latency asked: a watermark above 1, a
+#    queue drained late), as a busy host's wait for the CPU is not that
+#    long for half the events (p99 310 ms, median 1 ms measured);
 #  - after deactivation both buffers are off and the chip powers down
 #    (runtime suspended, 2 s autosuspend; 30 s is a stall);
-#  - a flush's flush-complete within 100 ms, after the events before it;
+#  - a flush's flush-complete comes after the events before it, within
+#    100 ms (logged beyond that) and never later than 1 s (fails: a flush
+#    kept until some later event or timeout);
 #  - a max report latency of 500 ms: events held back (the longest wait
-#    between 300 and 700 ms) and delivered in order;
+#    at least 300 ms; beyond 700 ms logged, beyond 2 s it fails: a queue
+#    kept until it fills or the sensor stops) and delivered in order;
 #  - at rest, with noise 0, in the six device-frame postures (+-x, +-y,
 #    +-z up) at -20, 25 and 70 degC: the mean event is 9.80665 m/s^2
 #    within 0.5 % and points up in Android's frame, through the adapter's
@@ -23,7 +37,7 @@
 # Not here: the calibrated field's heading after magn-calibrate and
 # uncalibrated - bias = calibrated (tests/hal/test_hal_core.c checks both
 # against a record; 88/89 check the driver's part of the calibration).
-plan 36
+plan 38
 HAL=/bin/as9888-hal-cat
 W=/tmp/hal
 G=9.80665
@@ -59,31 +73,55 @@ lags() {
 		END { if (!n) { print "none"; exit }
 		      printf "%.0f %.0f %.0f %.0f\n", v[0], v[int(n / 2)], v[int(n * 0.99)], v[n - 1] }'
 }
-# clock_ok "FEWEST MEDIAN P99 MOST": the timestamps are CLOCK_BOOTTIME's:
-# none after its arrival, the median within 20 ms of it
-clock_ok() { [ "$1" != none ] && [ "$1" -ge 0 ] && [ "$2" -le 20 ]; }
+# clock_ok "FEWEST MEDIAN P99 MOST": the timestamps are CLOCK_BOOTTIME's
+# (none after its arrival) and the median arrival within 250 ms; beyond
+# 20 ms is said
+clock_ok() {
+	[ "$1" != none ] && [ "$1" -ge 0 ] && [ "$2" -le 250 ] || return 1
+	[ "$2" -le 20 ] || diag "median arrival $2 ms: more than 20 ms (a busy host?)"
+}
 
-# rate_ok FILE HANDLE HZ NAME TAG: the sensor's rate within 10 % of HZ
+# rate_ok FILE HANDLE HZ NAME TAG: the sensor's rate at most 10 % over HZ
+# and at least 60 % of it; 10 % under or more is said
 rate_ok() {
 	_r=$(rate_mhz $1 $2)
 	diag "AS9888-METRIC hal_rate_$5_$4_mhz=${_r:-none} (asked $3 Hz)"
-	near "$5 Hz: the $4 delivers ${_r:-no} mHz, asked $3 Hz (10 %)" \
-		"${_r:-none}" $(($3 * 1000)) $(($3 * 100))
+	check "$5 Hz: the $4 delivers ${_r:-no} mHz, asked $3 Hz (60 % .. +10 %)" \
+		in_range "$_r" $(($3 * 600)) $(($3 * 1100))
+	in_range "$_r" 1 $(($3 * 900 - 1)) &&
+		diag "$5 Hz: the $4 more than 10 % slow: the guest did not keep up"
 }
 # in_range VALUE LOW HIGH: an integer within LOW..HIGH
 in_range() { is_int "$1" && [ "$1" -ge "$2" ] && [ "$1" -le "$3" ]; }
 
+# both_on: both devices' buffers run (30 s without: a stall)
+both_on() {
+	_bo=0
+	until [ "$(cat $DEV/buffer/enable) $(cat $MDEV/buffer/enable)" = "1 1" ]; do
+		[ $_bo -ge 300 ] && return 1
+		sleep 0.1; _bo=$((_bo + 1))
+	done
+}
+
 # pair ACC_HZ MAG_HZ: both sensors for 4 s
 pair() {
 	_f=$W/pair-$1-$2
-	hal --seconds 4 1:$((1000 / $1)) 2:$((1000 / $2)) > $_f 2> $_f.err
+	hal --seconds 4 1:$((1000 / $1)) 2:$((1000 / $2)) > $_f 2> $_f.err &
+	_pp=$!
+	if both_on; then
+		_hz="$(cat $DEV/sampling_frequency) $(cat $MDEV/sampling_frequency)"
+	else
+		_hz="buffers not both on in 30 s"
+	fi
+	wait $_pp
+	eq "$1+$2 Hz: the devices' sampling_frequency while they run" "$_hz" "$1 $2"
 	[ -s $_f.err ] && diag "as9888-hal-cat: $(cat $_f.err)"
 	rate_ok $_f 1 $1 accelerometer "$1+$2"
 	rate_ok $_f 2 $2 magnetometer "$1+$2"
 	check "$1+$2 Hz: event times strictly increase per sensor" increasing $_f
 	_l=$(lags $_f)
 	diag "AS9888-METRIC hal_lag_ms_$1_$2=$_l (fewest median p99 most)"
-	check "$1+$2 Hz: event times on CLOCK_BOOTTIME: none after its arrival, median within 20 ms (ms: $_l)" \
+	check "$1+$2 Hz: event times on CLOCK_BOOTTIME: none after its arrival, median within 250 ms (ms: $_l)" \
 		clock_ok $_l
 }
 pair 100 10
@@ -98,7 +136,8 @@ batch_ok() { [ "$1" -ge 200 ] && increasing "$2"; }
 hal --seconds 2 --flush-at 1 1:10 > $W/flush 2> $W/flush.err
 _fl=$(awk '$1 == "flush-asked" { a = $3 } $1 == "flush" && a { printf "%.0f", ($3 - a) / 1e6; exit }' $W/flush)
 diag "AS9888-METRIC hal_flush_ms=${_fl:-none}"
-check "flush: flush-complete ${_fl:-never} ms after the call (100 ms)" in_range "$_fl" 0 100
+check "flush: flush-complete ${_fl:-never} ms after the call (at most 1 s)" in_range "$_fl" 0 1000
+in_range "$_fl" 101 1000 && diag "flush: more than 100 ms (a busy host?)"
 check "flush: the flush-complete comes after events" \
 	awk '$1 == "ev" { e++ } $1 == "flush" { f = 1; exit !(e > 0) } END { if (!f) exit 1 }' $W/flush
 
@@ -107,7 +146,8 @@ hal --seconds 3 1:10:500 > $W/batch 2> $W/batch.err
 _bl=$(awk '$1 == "ev" { d = $5 - $4; if (d > m) m = d } END { printf "%.0f", m / 1e6 }' $W/batch)
 _bn=$(grep -c '^ev ' $W/batch)
 diag "AS9888-METRIC hal_batch_longest_wait_ms=$_bl events=$_bn"
-check "batch 500 ms: events held back (longest wait $_bl ms, 300..700)" in_range "$_bl" 300 700
+check "batch 500 ms: events held back (longest wait $_bl ms, 300..2000)" in_range "$_bl" 300 2000
+in_range "$_bl" 701 2000 && diag "batch 500 ms: longest wait beyond 700 ms (a busy host?)"
 check "batch 500 ms: $_bn events (>= 200 of about 300: the last batch goes with the deactivation), in order" \
 	batch_ok $_bn $W/batch
 
