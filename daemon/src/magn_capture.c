@@ -115,7 +115,11 @@ static void put_back(struct capture_dev *d)
 	while (d->n_saved) {
 		struct saved *s = &d->saved[--d->n_saved];
 
-		iio_write_attr_at(d->dfd, s->name, s->value);
+		/*
+		 * An empty value (no trigger) as a newline: sysfs never calls
+		 * the attribute's store for a write of nothing
+		 */
+		iio_write_attr_at(d->dfd, s->name, *s->value ? s->value : "\n");
 	}
 }
 
