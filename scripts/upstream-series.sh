@@ -13,7 +13,10 @@
 #   3.. one patch per stage of upstream/stages/ (the driver in steps, then
 #       its documentation; scripts/upstream-stages.sh makes each stage's
 #       tree, the last one is this repository's files). A stage directory
-#       holding a file named "rfc" is sent as "[RFC PATCH n/m]"
+#       holding a file named "rfc" is sent as "[RFC PATCH n/m]"; one
+#       holding "mainline.patch" (a diff, a/ b/ prefixes, of files of the
+#       pristine tree, such as a note on a sysfs-bus-iio entry) has it
+#       applied in its patch
 #   0   the cover letter: upstream/cover-letter (its subject, a blank line,
 #       its text) in git format-patch's cover letter, before the shortlog
 #       and the diffstat git writes
@@ -273,6 +276,10 @@ for s in "${STAGE_NAMES[@]}"; do
 		mfiles+=("$DOC_REL")
 	fi
 	maintainers_entry "${mfiles[@]}"
+	if [ -f "$REPO/upstream/stages/$s/mainline.patch" ]; then
+		G apply "$REPO/upstream/stages/$s/mainline.patch" ||
+			die "stage $s: its mainline.patch does not apply to linux-source-$K"
+	fi
 	commit "$(msg "$s" <"$REPO/upstream/stages/$s/message")"
 done
 

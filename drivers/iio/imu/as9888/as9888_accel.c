@@ -159,13 +159,19 @@ static int as9888_write_dac(struct as9888_chip *chip, int axis, u8 da)
 
 	prev = old;
 	if (as9888_write_trim(chip, reg, &prev, 1)) {
-		/* A write that fails on the bus drops the register from the cache */
-		regcache_cache_only(chip->regmap, true);
-		regmap_write(chip->regmap, reg, old);
-		regcache_cache_only(chip->regmap, false);
-		dev_err(chip->dev,
-			"offset DAC 0x%02x may hold 0x%02x until the chip is powered again (0x%02x kept)\n",
-			reg, da, prev);
+		/*
+		 * A write that fails on the bus drops the register from the
+		 * cache. Under int_lock: the interrupt thread's INTxST read
+		 * would fail while the map is cache-only.
+		 */
+		scoped_guard(mutex, &chip->int_lock) {
+			regcache_cache_only(chip->regmap, true);
+			regmap_write(chip->regmap, reg, old);
+			regcache_cache_only(chip->regmap, false);
+		}
+		dev_err_ratelimited(chip->dev,
+				    "offset DAC 0x%02x may hold 0x%02x until the chip is powered again (0x%02x kept)\n",
+				    reg, da, prev);
 	}
 
 	return ret;

@@ -521,9 +521,9 @@ int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,
 
 	for (i = 0; i < len; i++) {
 		if (readback[i] != val[i]) {
-			dev_err(chip->dev,
-				"register 0x%02zx reads 0x%02x, 0x%02x written\n",
-				reg + i, readback[i], val[i]);
+			dev_err_ratelimited(chip->dev,
+					    "register 0x%02zx reads 0x%02x, 0x%02x written\n",
+					    reg + i, readback[i], val[i]);
 			return -EIO;
 		}
 	}

@@ -116,8 +116,10 @@ enum as9888_sensor_id {
  *		for whichever it is
  * @int_lock:	makes the start of a measurement (its MS write, which
  *		deasserts the pin, and @meas_seq) atomic with respect to the
- *		deassertion of a level-triggered pin by reading INTxST; taken
- *		inside @lock, and alone by the interrupt thread
+ *		deassertion of a level-triggered pin by reading INTxST, as
+ *		is a DAC write back's moment in cache-only mode, in which
+ *		that read would fail; taken inside @lock, and alone by the
+ *		interrupt thread
  * @meas_seq:	measurements started, under @int_lock; counted before the
  *		MS write, so that its edge always finds it
  * @irq_seq:	@meas_seq when the interrupt last fired: an edge that finds
