@@ -4,7 +4,10 @@
 #
 # Cache layout (everything outside the repository):
 #   $AS9888_CACHE/src/linux-<k>/      pristine, unpacked kernel source (k = 6.1, 7.2)
-#   $AS9888_CACHE/build/linux-<k>/    O= build dir: .config, vmlinux, bzImage, Module.symvers
+#   $AS9888_CACHE/vm/build-<k>/       the one O= build dir of each version (scripts/vm-kernel.sh:
+#                                     the guest kernel of the VM bench): .config, vmlinux,
+#                                     bzImage, Module.symvers; the lint, the series and
+#                                     the VM bench (KUnit included) all use it
 #   $AS9888_CACHE/bin/sparse          sparse built from Debian unstable's source
 #   $AS9888_CACHE/apt-unstable/       private apt sources list + lists + package cache
 #   $AS9888_CACHE/stamps/             stamp files that make warm runs take seconds
@@ -30,7 +33,7 @@ die() {
 }
 
 ksrc() { printf '%s/src/linux-%s\n' "$AS9888_CACHE" "$1"; }
-kobj() { printf '%s/build/linux-%s\n' "$AS9888_CACHE" "$1"; }
+kobj() { printf '%s/vm/build-%s\n' "$AS9888_CACHE" "$1"; }
 
 # Seconds since the epoch with fractions, and a pretty "elapsed since" helper.
 now() { date +%s.%N; }

@@ -5,9 +5,14 @@
 #
 # Builds the guest kernel of the real-kernel test bench for each version:
 # a small x86_64 debug kernel (tinyconfig + tests/vm/config/{base,devices,
-# debug,<version>}.config: serial console, initramfs, modules, I2C/SPI/GPIO/
-# IIO/NVMEM, KASAN, PROVE_LOCKING, DEBUG_ATOMIC_SLEEP, kmemleak), then the
-# AS9888 driver modules and the test adapter (tests/vm/adapter) against it.
+# debug,checks,<version>}.config: serial console, initramfs, modules, I2C/
+# SPI/GPIO/IIO/NVMEM, KASAN, PROVE_LOCKING, DEBUG_ATOMIC_SLEEP, kmemleak,
+# MODVERSIONS, OF, KUnit), then the AS9888 driver modules (the KUnit suite
+# as a module too) and the test adapter (tests/vm/adapter) against it.
+#
+# This is the only kernel build of each version: scripts/kernel-trees.sh
+# runs it, and the driver's W=1/sparse build (kernel-build.sh) and the
+# upstream series' in-tree builds use its build directory (kobj).
 #
 # Uses the pristine sources unpacked by scripts/kernel-trees.sh and builds
 # into its own O= directory:
@@ -35,19 +40,21 @@ T_START=$(now)
 
 ensure_pkgs bc flex bison libelf-dev libssl-dev cpio kmod rsync build-essential
 
-# The unpacked sources (and kernels.env) come from kernel-trees.sh.
+# The unpacked sources come from kernel-trees.sh.
 need_src() {
 	local k="$1"
 	if [ ! -f "$(ksrc "$k")/Makefile" ]; then
-		log "$k: no unpacked source yet, running scripts/kernel-trees.sh $k"
-		"$AS9888_REPO/scripts/kernel-trees.sh" "$k" >"$LOG_DIR/vm-kernel-trees-$k.log" 2>&1 ||
-			die "kernel-trees.sh $k failed, see $LOG_DIR/vm-kernel-trees-$k.log"
+		# the sources only: kernel-trees.sh's build step runs this script
+		log "$k: no unpacked source yet, running scripts/kernel-trees.sh --source-only $k"
+		"$AS9888_REPO/scripts/kernel-trees.sh" --source-only "$k" \
+			>"$LOG_DIR/vm-kernel-trees-$k.log" 2>&1 ||
+			die "kernel-trees.sh --source-only $k failed, see $LOG_DIR/vm-kernel-trees-$k.log"
 	fi
 }
 
 fragments() {
 	local k="$1" f
-	for f in base devices debug "$k"; do
+	for f in base devices debug checks "$k"; do
 		[ -f "$CFG_DIR/$f.config" ] && printf '%s\n' "$CFG_DIR/$f.config"
 	done
 }
@@ -131,7 +138,7 @@ build_modules() {
 	{
 		make -C "$obj" M="$stage" -j"$JOBS" \
 			CONFIG_AS9888=m CONFIG_AS9888_I2C=m CONFIG_AS9888_SPI=m \
-			CONFIG_AS9888_KUNIT_TEST= modules
+			CONFIG_AS9888_KUNIT_TEST=m modules
 		make -C "$obj" M="$stage/tests/vm/adapter" -j"$JOBS" \
 			KBUILD_EXTRA_SYMBOLS="$stage/Module.symvers" modules
 	} >"$mlog" 2>&1 || {

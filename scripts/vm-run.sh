@@ -380,6 +380,9 @@ pack_initramfs() {
 	# AS9888_VM_SOAK=1 (scripts/vm-soak.sh): the repeated tests at their
 	# soak depth (62-bind-50: 50 cycles of each kind, not 10)
 	[ "${AS9888_VM_SOAK:-0}" = 0 ] || echo 1 >"$root/tests/soak"
+	# 11-kunit's plan: the test cases of the driver's KUnit suite
+	grep -c 'KUNIT_CASE' "$AS9888_REPO/$AS9888_DRIVER_REL/as9888_calib_kunit.c" \
+		>"$root/tests/kunit-cases" || true
 	chmod +x "$root/init" "$root/tests/run-all.sh"
 	(cd "$root" && find . -print0 | cpio --null -o -H newc --quiet | gzip -1) >"$out"
 	INITRD="$out"
