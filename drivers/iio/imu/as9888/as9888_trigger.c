@@ -12,9 +12,10 @@
  * own channels from it; the other device's handler does not touch it.
  * Each device has its own sampling_frequency; the trigger measures at the
  * union of their schedules, the magnetometer only in the samples of the
- * magnetometer device. Two devices, one
- * interrupt, a trigger of the chip that both may use: as kmx61 and
- * st_lsm9ds0 do. For both to buffer on it at once the kernel needs
+ * magnetometer device. Two devices, one interrupt and one trigger that
+ * both may use, so that a sample both want is one measurement (kmx61,
+ * also two devices on one interrupt, gives each device a trigger of its
+ * own instead). For both to buffer on it at once the kernel needs
  * CONFIG_IIO_CONSUMERS_PER_TRIGGER >= 2 (the default).
  *
  * A sample goes IDLE -> MEASURING (the MS write) -> FIRED (the INT1 edge,
