@@ -350,11 +350,17 @@ static int read_reg_debugfs(const char *dir, unsigned int reg,
 	const char *base = strrchr(dir, '/');
 	char ddir[IIO_PATH_MAX], sel[16], buf[IIO_ATTR_MAX], *end;
 	unsigned long v;
-	int ret;
+	int ret, n;
 
+	if (path_size)
+		path[0] = '\0';
 	base = base ? base + 1 : dir;
-	snprintf(ddir, sizeof(ddir), "%s/iio/%s", iio_debugfs_root(), base);
-	snprintf(path, path_size, "%s/%s", ddir, IIO_REG_ACCESS);
+	n = snprintf(ddir, sizeof(ddir), "%s/iio/%s", iio_debugfs_root(), base);
+	if (n < 0 || (size_t)n >= sizeof(ddir))
+		return -ENAMETOOLONG;
+	n = snprintf(path, path_size, "%s/%s", ddir, IIO_REG_ACCESS);
+	if (n < 0 || (size_t)n >= path_size)
+		return -ENAMETOOLONG;
 
 	snprintf(sel, sizeof(sel), "0x%02x", reg);
 	ret = iio_write_attr(ddir, IIO_REG_ACCESS, sel);
