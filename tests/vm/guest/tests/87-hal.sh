@@ -146,8 +146,10 @@ batch_ok() { [ "$1" -ge 200 ] && increasing "$2"; }
 hal --seconds 2 --flush-at 1 1:10 > $W/flush 2> $W/flush.err
 _fl=$(awk '$1 == "flush-asked" { a = $3 } $1 == "flush" && a { printf "%.0f", ($3 - a) / 1e6; exit }' $W/flush)
 diag "AS9888-METRIC hal_flush_ms=${_fl:-none}"
-check "flush: flush-complete ${_fl:-never} ms after the call (at most 1 s)" in_range "$_fl" 0 1000
-in_range "$_fl" 101 1000 && diag "flush: more than 100 ms (a busy host?)"
+# (10 s: a flush-complete that never comes is a stall; a slow one on a
+# busy host is said, not failed)
+check "flush: flush-complete ${_fl:-never} ms after the call (a stall beyond 10 s)" in_range "$_fl" 0 10000
+in_range "$_fl" 101 10000 && diag "flush: more than 100 ms (a busy host?)"
 check "flush: the flush-complete comes after events" \
 	awk '$1 == "ev" { e++ } $1 == "flush" { f = 1; exit !(e > 0) } END { if (!f) exit 1 }' $W/flush
 
@@ -156,8 +158,9 @@ hal --seconds 3 1:10:500 > $W/batch 2> $W/batch.err
 _bl=$(awk '$1 == "ev" { d = $5 - $4; if (d > m) m = d } END { printf "%.0f", m / 1e6 }' $W/batch)
 _bn=$(grep -c '^ev ' $W/batch)
 diag "AS9888-METRIC hal_batch_longest_wait_ms=$_bl events=$_bn"
-check "batch 500 ms: events held back (longest wait $_bl ms, 300..2000)" in_range "$_bl" 300 2000
-in_range "$_bl" 701 2000 && diag "batch 500 ms: longest wait beyond 700 ms (a busy host?)"
+# (held back: at least 300 ms; beyond 10 s a queue that stalls)
+check "batch 500 ms: events held back (longest wait $_bl ms, 300..10000)" in_range "$_bl" 300 10000
+in_range "$_bl" 701 10000 && diag "batch 500 ms: longest wait beyond 700 ms (a busy host?)"
 check "batch 500 ms: $_bn events (>= 200 of about 300: the last batch goes with the deactivation), in order" \
 	batch_ok $_bn $W/batch
 
@@ -201,9 +204,10 @@ check "factory test through the driver on the magnetic board" \
 	sh -c "/bin/as9888-calibd factory-test --backend iio --record $W/rec-m > $W/ft-m.log 2>&1"
 magn_iron on
 echo 0.3 > $SIM/magn_noise && echo 1 > $SIM/tumble
-# (restore: what applies the record at boot)
+# (restore: what applies the record at boot; --timeout 600 stops a
+# session that stalls, a slow guest is not timed: learning takes 84 s idle)
 check "magn-calibrate --backend iio, the board tumbling: stored, and restored to the driver" \
-	sh -c "/bin/as9888-calibd magn-calibrate --backend iio --record $W/rec-m > $W/mc.log 2>&1 &&
+	sh -c "/bin/as9888-calibd magn-calibrate --backend iio --timeout 600 --record $W/rec-m > $W/mc.log 2>&1 &&
 	       /bin/as9888-calibd restore --backend iio --record $W/rec-m >> $W/mc.log 2>&1"
 echo 0 > $SIM/tumble && echo 0 > $SIM/magn_noise && echo "1 0 0 0" > $SIM/orientation
 tail -n 3 $W/mc.log | sed "s/^/# /"

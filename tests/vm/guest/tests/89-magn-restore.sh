@@ -141,7 +141,7 @@ if [ -n "$T" ]; then
 	# boot test turns it one, the sweep's slowest)
 	echo 0.3 > $SIM/magn_noise && echo 2 > $SIM/tumble
 	check "magn-calibrate --backend iio, the board tumbling two degrees a measurement: stored" \
-		sh -c "$CALIBD magn-calibrate --backend iio --record $O/rec3 > $O/mc.log 2>&1"
+		sh -c "$CALIBD magn-calibrate --backend iio --timeout 600 --record $O/rec3 > $O/mc.log 2>&1"
 	echo 0 > $SIM/tumble && echo 0 > $SIM/magn_noise
 	grep -E "^(samples: |Magnetometer calibrated|  field)" $O/mc.log | sed 's/^/# /'
 	tail -n 2 $O/mc.log | sed 's/^/# /'
