@@ -38,7 +38,8 @@ int anon_file_unlinked(const char *dir)
 
 int anon_file_in(const char *dir)
 {
-	int fd = open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+	/* O_EXCL: the file can never be given a name (linkat) */
+	int fd = open(dir, O_TMPFILE | O_EXCL | O_RDWR | O_CLOEXEC, 0600);
 
 	if (fd >= 0)
 		return fd;

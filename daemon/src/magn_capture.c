@@ -74,7 +74,6 @@ struct capture_dev {
 struct magn_capture {
 	struct capture_dev dev[DEVS];
 	char trigger[CAPTURE_NAME_MAX];
-	unsigned int unpaired;
 };
 
 static int64_t now_ns(void)
@@ -455,7 +454,6 @@ int magn_capture_next(struct magn_capture *c, struct magn_capture_pair *p,
 			break;
 		/* the older one has no partner: the other device's is later */
 		drop_head(ta < tm ? a : m);
-		c->unpaired++;
 	}
 	for (axis = 0; axis < AS9888_AXES; axis++) {
 		p->magn[axis] = iio_scan_value(&m->ch[axis], m->buf);
@@ -472,11 +470,6 @@ int magn_capture_next(struct magn_capture *c, struct magn_capture_pair *p,
 const char *magn_capture_trigger(const struct magn_capture *c)
 {
 	return c->trigger;
-}
-
-unsigned int magn_capture_unpaired(const struct magn_capture *c)
-{
-	return c->unpaired;
 }
 
 void magn_capture_close(struct magn_capture *c)

@@ -10,6 +10,12 @@
  * by their timestamps (within a quarter of the period), a sample without
  * its partner (the first one of a device started while the other ran) is
  * dropped. Documentation/iio/as9888.rst, "Two IIO devices".
+ *
+ * What it changed is put back by magn_capture_close() and on every error
+ * path, from memory: a process killed during a capture leaves both
+ * buffers enabled on the trigger, and the next capture then finds
+ * "another program has the buffer enabled" (sysfs reads instead) until
+ * a buffer/enable of 0 is written or the driver is reloaded.
  */
 #ifndef AS9888_MAGN_CAPTURE_H
 #define AS9888_MAGN_CAPTURE_H
@@ -61,9 +67,6 @@ int magn_capture_next(struct magn_capture *c, struct magn_capture_pair *p,
 
 /* The trigger the capture runs on */
 const char *magn_capture_trigger(const struct magn_capture *c);
-
-/* Samples dropped without a partner so far */
-unsigned int magn_capture_unpaired(const struct magn_capture *c);
 
 /* Stop it and put every attribute back as found */
 void magn_capture_close(struct magn_capture *c);

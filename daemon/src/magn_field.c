@@ -27,6 +27,9 @@
 /* "m1 m2 m3 a1 a2 a3\n" with %.3f fields */
 #define LINE_LEN	160
 #define FILE_MAX	((MAGN_FIELD_KEEP + 2) * LINE_LEN)
+/* magcal_export() keeps the newest samples only when the file holds all */
+_Static_assert(MAGN_FIELD_KEEP >= MAGCAL_MAX_SAMPLES,
+	       "the field mode's file must hold magcal's whole store");
 
 double magn_field_reference_ut(const struct calib_magn *m)
 {
@@ -150,13 +153,15 @@ struct kept {
 
 /*
  * The file's contents: the count since the last fit, then @fit's store;
- * -ENOMEM leaves the file as it was
+ * -ENOMEM leaves the file as it was; a failed write (a full disk) is an
+ * error, never a store silently cut short
  */
 static int write_store(int fd, unsigned int fresh,
 		       const struct magcal_session *fit)
 {
 	struct kept *k = malloc(sizeof(*k));
 	unsigned int n, i;
+	int ret = 0;
 	FILE *out;
 
 	if (!k) {
@@ -166,21 +171,27 @@ static int write_store(int fd, unsigned int fresh,
 	n = magcal_export(fit, k->m, k->g, MAGN_FIELD_KEEP);
 	out = fdopen(fd, "w");
 	if (!out) {
+		ret = -errno;
 		close(fd);
 		free(k);
-		return -errno;
+		return ret;
 	}
-	if (ftruncate(fd, 0) == 0 && lseek(fd, 0, SEEK_SET) == 0) {
+	if (ftruncate(fd, 0) || lseek(fd, 0, SEEK_SET)) {
+		ret = -errno;
+	} else {
 		fprintf(out, "#%u\n", fresh);
 		for (i = 0; i < n; i++)
 			fprintf(out, "%.3f %.3f %.3f %.0f %.0f %.0f\n",
 				k->m[i][0], k->m[i][1], k->m[i][2], k->g[i][0],
 				k->g[i][1], k->g[i][2]);
+		if (ferror(out))
+			ret = -EIO;
 	}
-	fclose(out);	/* and the lock */
+	if (fclose(out) && !ret)	/* and the lock */
+		ret = -EIO;
 	free(k);
 
-	return 0;
+	return ret;
 }
 
 int magn_field_store_sample(const char *path, const double m[3],
@@ -248,7 +259,7 @@ int magn_field_store_sample(const char *path, const double m[3],
 	free(text);
 	fd = write_store(fd, fresh, fit);
 	if (fd) {
-		snprintf(err, errlen, "%.300s: cannot be rewritten: %s; this sample is not stored",
+		snprintf(err, errlen, "%.300s: cannot be rewritten: %s; the stored samples may be lost",
 			 path, strerror(-fd));
 		return fd;
 	}

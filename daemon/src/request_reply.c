@@ -91,6 +91,8 @@ int request_reply_run(int fd, int (*fn)(const struct cli_opts *o),
 		out = anon_file_open("as9888-reply-json", dir);
 		err = out < 0 ? out : anon_file_open("as9888-reply-errors", dir);
 		if (err < 0) {
+			if (out >= 0)
+				close(out);
 			dprintf(fd, "as9888-calibd: cannot buffer the reply (memfd, or a file without a name in %s): %s\n",
 				dir, strerror(-err));
 			send_status(fd, 1, 0);

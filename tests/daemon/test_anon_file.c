@@ -92,10 +92,22 @@ static void check_nameless(int fd, const char *dir)
 	close(fd);
 }
 
+/* @fd: a file in a directory, the owner's alone (0600); closed */
+static void check_private(int fd)
+{
+	struct stat st;
+
+	assert_true(fd >= 0);
+	assert_int_equal(fstat(fd, &st), 0);
+	assert_int_equal(st.st_mode & 07777, 0600);
+	close(fd);
+}
+
 static void tmpfile_in_dir(void **state)
 {
 	struct dir *d = *state;
 
+	check_private(anon_file_in(d->path));
 	check_nameless(anon_file_in(d->path), d->path);
 }
 
@@ -103,6 +115,7 @@ static void unlinked_in_dir(void **state)
 {
 	struct dir *d = *state;
 
+	check_private(anon_file_unlinked(d->path));
 	check_nameless(anon_file_unlinked(d->path), d->path);
 }
 

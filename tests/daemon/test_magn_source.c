@@ -359,18 +359,23 @@ static void iio_buffered(void **state)
 	fake_get(f->magn, "trigger/current_trigger", text, sizeof(text));
 	assert_string_equal(text, "\n");
 
-	/* another program's buffer: no capture, nothing changed, sysfs */
-	fake_put(f->dev, "buffer/enable", "1\n");
+	/*
+	 * another program's buffer on the magnetometer, found after the
+	 * accelerometer was set up: no capture, the accelerometer's
+	 * attributes put back, sysfs
+	 */
+	fake_put(f->magn, "buffer/enable", "1\n");
 	rewind(log);
 	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
 					      log, &s, err, sizeof(err)), 0);
 	log_text(log, text, sizeof(text));
 	assert_non_null(strstr(text, "another program has the buffer enabled"));
-	expect_attr(f->magn, "trigger/current_trigger", "");
+	expect_attr(f->dev, "trigger/current_trigger", "");
+	expect_attr(f->dev, "buffer/enable", "0");
 	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
 	assert_true(r.accel[0] == 1);
 	magn_source_close(s);
-	fake_put(f->dev, "buffer/enable", "0\n");
+	fake_put(f->magn, "buffer/enable", "0\n");
 	buffers_as_found(f);
 	fclose(log);
 }
