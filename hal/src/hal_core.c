@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * The HAL core (as9888_hal.h): the sensors, the framework's calls, and the
- * reader thread that owns both devices' buffers. activate() and batch()
- * only say what is wanted and wait for the reader to apply it between two
- * poll()s, so that no descriptor it polls is closed under it.
+ * reader thread that reads both devices' buffers. activate() and batch()
+ * set a buffer up or stop it on the caller's thread (the framework's,
+ * which may block), so that a device already running keeps flowing while
+ * the other one's sysfs writes are made.
  */
 #include <errno.h>
 #include <fcntl.h>
@@ -56,6 +57,19 @@ struct sensor {
 	struct hal_queue queue;
 };
 
+/*
+ * Locking: @config serializes the framework's activate() and batch()
+ * (and close()), which set the buffers up on the caller's thread: the
+ * sysfs writes of a buffer's start (enable, scan elements, clock, trigger,
+ * rate, length, watermark; slow on a loaded or emulated machine) and stop
+ * are made with @lock released, on a copy of the stream, so the reader
+ * goes on delivering the running device's samples meanwhile. @lock guards
+ * everything else. A started stream is handed to the reader (copied in,
+ * its fd set) under @lock; a stream is taken from it (fd set to -1) under
+ * @lock, and its descriptor closed only once the reader is out of the
+ * poll() that may watch it (@polling, @polls). The reader itself makes no
+ * sysfs write but a gone device's buffer stop. Order: @config, then @lock.
+ */
 struct as9888_hal {
 	struct as9888_hal_config cfg;
 	struct hal_devices devs;
@@ -66,14 +80,15 @@ struct as9888_hal {
 	as9888_hal_post_fn post;
 	void *ctx;
 
+	pthread_mutex_t config;
 	pthread_mutex_t lock;
-	pthread_cond_t applied;
+	pthread_cond_t polled;		/* the reader came back from a poll() */
 	pthread_t reader;
 	int wake[2];
 	bool stop;
-	unsigned long wanted;		/* configurations asked */
-	unsigned long done;		/* and applied */
-	int apply_ret;
+	bool polling;			/* the reader is in poll() */
+	unsigned long polls;		/* the poll()s it came back from */
+	bool record_due;		/* the magnetometer started: read the record */
 	char err[256];
 
 	/* the reader's alone */
@@ -163,7 +178,7 @@ size_t as9888_hal_sensors(const struct as9888_hal *h,
 	return AS9888_SENSOR_COUNT;
 }
 
-/* ---- applying the configuration (the reader thread) ---- */
+/* ---- applying the configuration (the caller's thread, @config held) ---- */
 
 /* The rate @s must run at for its active sensors @first..@last; 0: off */
 static double wanted_hz(struct as9888_hal *h, int first, int last)
@@ -180,40 +195,79 @@ static double wanted_hz(struct as9888_hal *h, int first, int last)
 	return hz;
 }
 
+static void wake(struct as9888_hal *h)
+{
+	char c = 1;
+
+	/* a full pipe already wakes the reader */
+	if (write(h->wake[1], &c, 1) < 0)
+		return;
+}
+
+/* Wait until the reader is out of any poll() that began before this call */
+static void leave_poll(struct as9888_hal *h)
+{
+	unsigned long polls = h->polls;
+
+	if (!h->polling)
+		return;
+	wake(h);
+	while (h->polling && h->polls == polls)
+		pthread_cond_wait(&h->polled, &h->lock);
+}
+
+/*
+ * Bring @s (device @dev) to @hz (0: off), @h->lock held: the sysfs writes
+ * are made on a copy with the lock released; the copy is handed to the
+ * reader, or the running stream taken from it, under the lock
+ */
 static int apply_stream(struct as9888_hal *h, struct hal_stream *s, double hz, int dev)
 {
 	long rate = hal_stream_pick_rate(s, hz);
+	bool running = s->fd >= 0;
+	struct hal_stream tmp;
 	char err[256];
 	int ret = 0;
 
-	if (hz == 0) {
-		hal_stream_stop(s);
+	if (hz == 0 ? !running : running && (!rate || rate == s->hz))
 		return 0;
+	tmp = *s;
+	if (hz == 0) {
+		s->fd = -1;
+		leave_poll(h);
 	}
-	if (s->fd < 0) {
-		ret = hal_stream_start(s, h->devs.trigger, rate, err, sizeof(err));
-		h->prev_ts[dev] = 0;
-	} else {
-		ret = hal_stream_set_rate(s, rate, err, sizeof(err));
-	}
-	if (ret)
+	pthread_mutex_unlock(&h->lock);
+	if (hz == 0)
+		hal_stream_stop(&tmp);
+	else if (running)
+		ret = hal_stream_set_rate(&tmp, rate, err, sizeof(err));
+	else
+		ret = hal_stream_start(&tmp, h->devs.trigger, rate, err, sizeof(err));
+	pthread_mutex_lock(&h->lock);
+	if (ret) {
 		set_error(h, err);
+	} else if (hz != 0 && running) {
+		/* unless the reader stopped it meanwhile (the device went away) */
+		if (s->fd >= 0)
+			s->hz = tmp.hz;
+	} else if (hz != 0) {
+		*s = tmp;
+		h->prev_ts[dev] = 0;
+		if (dev)
+			h->record_due = true;
+		wake(h);
+	}
 	return ret;
 }
 
-static void check_record(struct as9888_hal *h, bool force);
-
 static int apply(struct as9888_hal *h)
 {
-	bool magn_was = h->magn.fd >= 0;
 	int ret, ret2;
 
 	ret = apply_stream(h, &h->accel, wanted_hz(h, AS9888_HANDLE_ACCEL,
 						     AS9888_HANDLE_ACCEL), 0);
 	ret2 = apply_stream(h, &h->magn, wanted_hz(h, AS9888_HANDLE_MAGN,
 						     AS9888_HANDLE_MAGN_UNCAL), 1);
-	if (!magn_was && h->magn.fd >= 0)
-		check_record(h, true);
 	return ret ? ret : ret2;
 }
 
@@ -444,19 +498,14 @@ static void *reader_thread(void *arg)
 
 	pthread_mutex_lock(&h->lock);
 	while (!h->stop) {
-		if (h->done != h->wanted) {
-			unsigned long wanted = h->wanted;
-
-			h->apply_ret = apply(h);
-			h->done = wanted;
-			pthread_cond_broadcast(&h->applied);
-		}
-		if (h->magn.fd >= 0)
-			check_record(h, false);
 		deadline = deliver_due(h);
 		post_out(h);
-		if (h->stop || h->done != h->wanted)
-			continue;
+		if (h->stop)
+			break;
+		/* before the first sample of a magnetometer just started */
+		if (h->magn.fd >= 0)
+			check_record(h, h->record_due);
+		h->record_due = false;
 
 		pfd[0] = (struct pollfd) { .fd = h->wake[0], .events = POLLIN };
 		for (i = 0; i < 2; i++)
@@ -471,16 +520,22 @@ static void *reader_thread(void *arg)
 			if (timeout > 1000)
 				timeout = 1000;
 		}
+		h->polling = true;
 		pthread_mutex_unlock(&h->lock);
 		n = poll(pfd, 3, timeout);
 		pthread_mutex_lock(&h->lock);
+		h->polling = false;
+		h->polls++;
+		pthread_cond_broadcast(&h->polled);
 		if (n < 0)
 			continue;	/* EINTR */
 		if (pfd[0].revents & POLLIN)
 			while (read(h->wake[0], drain, sizeof(drain)) > 0)
 				;
 		for (i = 0; i < 2; i++) {
-			if (!(pfd[i + 1].revents & (POLLIN | POLLERR | POLLHUP)))
+			/* a stream stopped since (a post drops the lock) is not this one */
+			if (!(pfd[i + 1].revents & (POLLIN | POLLERR | POLLHUP)) ||
+			    pfd[i + 1].fd != streams[i]->fd)
 				continue;
 			if (!read_stream(h, streams[i], i) || (pfd[i + 1].revents & (POLLERR | POLLHUP)))
 				/* the device went away: stop it rather than spin */
@@ -493,26 +548,6 @@ static void *reader_thread(void *arg)
 
 /* ---- the framework's calls ---- */
 
-static void wake(struct as9888_hal *h)
-{
-	char c = 1;
-
-	/* a full pipe already wakes the reader */
-	if (write(h->wake[1], &c, 1) < 0)
-		return;
-}
-
-/* Ask the reader to apply the configuration and wait: its result */
-static int reconfigure(struct as9888_hal *h)
-{
-	unsigned long mine = ++h->wanted;
-
-	wake(h);
-	while (h->done < mine && !h->stop)
-		pthread_cond_wait(&h->applied, &h->lock);
-	return h->apply_ret;
-}
-
 int as9888_hal_activate(struct as9888_hal *h, int handle, bool enable)
 {
 	struct sensor *s = sensor_of(h, handle);
@@ -520,6 +555,7 @@ int as9888_hal_activate(struct as9888_hal *h, int handle, bool enable)
 
 	if (!s)
 		return -EINVAL;
+	pthread_mutex_lock(&h->config);
 	pthread_mutex_lock(&h->lock);
 	if (s->active != enable) {
 		s->active = enable;
@@ -529,13 +565,14 @@ int as9888_hal_activate(struct as9888_hal *h, int handle, bool enable)
 			s->queue.count = 0;
 			s->flushes = 0;
 		}
-		ret = reconfigure(h);
+		ret = apply(h);
 		if (ret && enable) {
 			s->active = false;
-			reconfigure(h);
+			apply(h);
 		}
 	}
 	pthread_mutex_unlock(&h->lock);
+	pthread_mutex_unlock(&h->config);
 	return ret;
 }
 
@@ -554,15 +591,17 @@ int as9888_hal_batch(struct as9888_hal *h, int handle, int64_t period_ns,
 		period_ns = (int64_t)info->min_delay_us * 1000;
 	if (period_ns > (int64_t)info->max_delay_us * 1000)
 		period_ns = (int64_t)info->max_delay_us * 1000;
+	pthread_mutex_lock(&h->config);
 	pthread_mutex_lock(&h->lock);
 	s->period_ns = period_ns;
 	s->next_due = 0;
 	s->latency_ns = max_latency_ns;
 	if (s->active)
-		ret = reconfigure(h);
-	else
-		wake(h);
+		ret = apply(h);
+	/* the reader takes the new latency's deadline */
+	wake(h);
 	pthread_mutex_unlock(&h->lock);
+	pthread_mutex_unlock(&h->config);
 	return ret;
 }
 
@@ -637,13 +676,15 @@ int as9888_hal_open(const struct as9888_hal_config *cfg, as9888_hal_post_fn post
 			 strerror(errno));
 		goto fail;
 	}
+	pthread_mutex_init(&h->config, NULL);
 	pthread_mutex_init(&h->lock, NULL);
-	pthread_cond_init(&h->applied, NULL);
+	pthread_cond_init(&h->polled, NULL);
 	ret = -pthread_create(&h->reader, NULL, reader_thread, h);
 	if (ret) {
 		snprintf(err, errlen, "cannot start the reader thread: %s", strerror(-ret));
-		pthread_cond_destroy(&h->applied);
+		pthread_cond_destroy(&h->polled);
 		pthread_mutex_destroy(&h->lock);
+		pthread_mutex_destroy(&h->config);
 		goto fail;
 	}
 	*out = h;
@@ -662,19 +703,21 @@ void as9888_hal_close(struct as9888_hal *h)
 {
 	if (!h)
 		return;
+	/* no set-up under way */
+	pthread_mutex_lock(&h->config);
 	pthread_mutex_lock(&h->lock);
 	h->stop = true;
 	wake(h);
-	/* a call waiting for the reader gives up */
-	pthread_cond_broadcast(&h->applied);
 	pthread_mutex_unlock(&h->lock);
 	pthread_join(h->reader, NULL);
 	hal_stream_stop(&h->accel);
 	hal_stream_stop(&h->magn);
+	pthread_mutex_unlock(&h->config);
 	hal_feed_stop(h->feed);
 	close(h->wake[0]);
 	close(h->wake[1]);
-	pthread_cond_destroy(&h->applied);
+	pthread_cond_destroy(&h->polled);
 	pthread_mutex_destroy(&h->lock);
+	pthread_mutex_destroy(&h->config);
 	free(h);
 }
