@@ -60,6 +60,10 @@
 #define DRIFT_SIGMAS		4.0
 /* the largest turn of the magnetometer against gravity taken out, deg */
 #define MAX_TURN_DEG		5.0
+/* the turn learned from samples whose |g| is within 2 % of 1 g only */
+#define TURN_G_TOLERANCE	0.02
+/* Gauss-Newton steps of the turn at most (two make 5 deg exact) */
+#define TURN_STEPS		4
 
 /* the store's cells: cube faces split in 4 x 4 equal-angle cells */
 #define STORE_SPLIT		4
@@ -100,6 +104,7 @@ void magcal_config_default(struct magcal_config *cfg)
 	cfg->reference_field_ut = 0;
 	cfg->max_drift_ut = 0.4;
 	cfg->max_dip_drift_deg = 0.6;
+	cfg->max_turn_uncertainty_deg = 0.3;
 }
 
 static bool config_ok(const struct magcal_config *c)
@@ -110,6 +115,7 @@ static bool config_ok(const struct magcal_config *c)
 	       c->field_max_ut > c->field_min_ut && c->max_residual_ut > 0 &&
 	       c->outlier_ut > 0 && c->max_uncertainty_deg > 0 &&
 	       c->max_drift_ut > 0 && c->max_dip_drift_deg > 0 &&
+	       c->max_turn_uncertainty_deg > 0 &&
 	       (c->reference_field_ut == 0 ||
 		(c->reference_field_ut >= c->field_min_ut &&
 		 c->reference_field_ut <= c->field_max_ut));
@@ -218,6 +224,13 @@ int magcal_add(struct magcal_session *s, const double m_ut[3],
 }
 
 /* ---- linear algebra ---- */
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+	out[0] = a[1] * b[2] - a[2] * b[1];
+	out[1] = a[2] * b[0] - a[0] * b[2];
+	out[2] = a[0] * b[1] - a[1] * b[0];
+}
 
 /* Solve a x = b (n <= NPARAM) by Gaussian elimination; false if singular */
 static bool solve(int n, double a[NPARAM][NPARAM], double b[NPARAM],
@@ -858,68 +871,210 @@ static double dip_of(const double c[3], const double g[3])
 	return asin(fmax(-1, fmin(1, -cosang))) * DEG_PER_RAD;
 }
 
+/* @r = the rotation by the rotation vector @v (radians): Rodrigues */
+static void rot_from_vector(const double v[3], double r[3][3])
+{
+	double a = norm3(v), k[3], sa, ca;
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			r[i][j] = i == j;
+	if (!(a > 0))
+		return;
+	for (i = 0; i < 3; i++)
+		k[i] = v[i] / a;
+	sa = sin(a);
+	ca = 1 - cos(a);
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			r[i][j] = (i == j ? 1 : 0) + ca * (k[i] * k[j] - (i == j));
+	r[2][1] += sa * k[0];
+	r[1][2] -= sa * k[0];
+	r[0][2] += sa * k[1];
+	r[2][0] -= sa * k[1];
+	r[1][0] += sa * k[2];
+	r[0][1] -= sa * k[2];
+}
+
+/* The rotation vector (radians) of the rotation @r (an angle below 180 deg) */
+static void rot_to_vector(const double r[3][3], double v[3])
+{
+	double c = (r[0][0] + r[1][1] + r[2][2] - 1) / 2, a, f;
+
+	a = acos(fmax(-1, fmin(1, c)));
+	f = a > 1e-12 ? a / (2 * sin(a)) : 0.5;
+	v[0] = f * (r[2][1] - r[1][2]);
+	v[1] = f * (r[0][2] - r[2][0]);
+	v[2] = f * (r[1][0] - r[0][1]);
+}
+
+static void mat_vec(const double m[3][3], const double v[3], double out[3])
+{
+	int i;
+
+	for (i = 0; i < 3; i++)
+		out[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+}
+
+/*
+ * The samples the turn is learned from: unit field @c and unit up @u of
+ * each sample whose gravity's magnitude is within TURN_G_TOLERANCE of the
+ * median's (1 g: a hand's linear acceleration tilts the accelerometer's
+ * reading away from up, and that would bias the dip). Returns how many.
+ */
+static unsigned int turn_samples(const struct magcal_session *s,
+				 const bool *use, const struct magcal_result *r,
+				 double c[][3], double u[][3])
+{
+	double mag[MAGCAL_MAX_SAMPLES], sorted[MAGCAL_MAX_SAMPLES], g1, nc;
+	unsigned int i, n = 0, k = 0;
+	int j;
+
+	for (i = 0; i < s->n; i++)
+		mag[i] = use[i] && s->s[i].has_g ? norm3(s->s[i].g) : 0;
+	for (i = 0; i < s->n; i++)
+		if (mag[i] > 0)
+			sorted[k++] = mag[i];
+	if (!k)
+		return 0;
+	qsort(sorted, k, sizeof(sorted[0]), cmp_double);
+	g1 = sorted[k / 2];
+	for (i = 0; i < s->n; i++) {
+		if (!(mag[i] > 0) || fabs(mag[i] / g1 - 1) > TURN_G_TOLERANCE)
+			continue;
+		magcal_apply(r, s->s[i].m, c[n]);
+		nc = norm3(c[n]);
+		if (!(nc > 0))
+			continue;
+		for (j = 0; j < 3; j++) {
+			c[n][j] /= nc;
+			u[n][j] = s->s[i].g[j] / mag[i];
+		}
+		n++;
+	}
+	return n;
+}
+
+/*
+ * The turn @rot of the magnetometer against the accelerometer that makes
+ * the dip constant: u . (rot c) = sin of the angle to up, the same for
+ * every sample. Gauss-Newton on the rotation (the first step is the
+ * linear least squares in (constant, omega); a few steps make a turn of
+ * a few degrees exact, not linearised). Returns the standard deviation of
+ * the turn found (radians, sqrt of the trace of omega's covariance), or
+ * INFINITY when it is not determined.
+ */
+static double learn_turn(double c[][3], double u[][3], unsigned int n,
+			 double rot[3][3])
+{
+	double a[NPARAM][NPARAM], inv[NPARAM][NPARAM], rhs[NPARAM], x[NPARAM];
+	double cr[3], cg[3], row[4], rt[3][3], step[3][3], sq, var = 0;
+	unsigned int i, it;
+	int j, k, l;
+
+	for (j = 0; j < 3; j++)
+		for (k = 0; k < 3; k++)
+			rot[j][k] = j == k;
+	if (n < 2 * DRIFT_WINDOW)
+		return INFINITY;
+	for (it = 0; it < TURN_STEPS; it++) {
+		memset(a, 0, sizeof(a));
+		memset(rhs, 0, sizeof(rhs));
+		for (i = 0; i < n; i++) {
+			mat_vec(rot, c[i], cr);
+			cross3(cr, u[i], cg);
+			row[0] = 1;
+			for (j = 0; j < 3; j++)
+				row[1 + j] = -cg[j];
+			for (j = 0; j < 4; j++) {
+				for (k = 0; k < 4; k++)
+					a[j][k] += row[j] * row[k];
+				rhs[j] += row[j] * (cr[0] * u[i][0] +
+						    cr[1] * u[i][1] +
+						    cr[2] * u[i][2]);
+			}
+		}
+		memcpy(inv, a, sizeof(inv));
+		if (!solve(4, inv, rhs, x))
+			return INFINITY;
+		rot_from_vector(x + 1, step);
+		for (j = 0; j < 3; j++)
+			for (k = 0; k < 3; k++)
+				for (l = 0, rt[j][k] = 0; l < 3; l++)
+					rt[j][k] += step[j][l] * rot[l][k];
+		memcpy(rot, rt, sizeof(rt));
+		if (norm3(x + 1) < 1e-10)
+			break;
+	}
+	/* the noise left about the constant dip, and omega's covariance */
+	for (i = 0, sq = 0; i < n; i++) {
+		mat_vec(rot, c[i], cr);
+		sq += pow(cr[0] * u[i][0] + cr[1] * u[i][1] + cr[2] * u[i][2] -
+			  x[0], 2);
+	}
+	for (j = 1; j < 4; j++) {
+		double e[NPARAM] = { 0 }, col[NPARAM];
+
+		memcpy(inv, a, sizeof(inv));
+		e[j] = 1;
+		if (!solve(4, inv, e, col))
+			return INFINITY;
+		var += col[j];
+	}
+	return sqrt(fmax(0, var * sq / (n - 4)));
+}
+
 /*
  * The fit's consistency in time: the slow structure of the residuals
  * (the field's magnitude) and of the dip (its angle to gravity) along the
- * samples used. Both are constant while only the device turns.
+ * samples used. Both are constant while only the device turns; the
+ * magnetometer turned against the accelerometer (an asymmetric soft
+ * iron, which a magnitude fit cannot see) makes the dip depend on the
+ * orientation, so that turn is learned first and taken out, unless it is
+ * beyond any board's (MAX_TURN_DEG). It is trusted (@rot, what a caller
+ * stores) only when the samples pin it down.
  */
 static void consistency(const struct magcal_session *s, const bool *use,
+			const struct magcal_config *cfg,
 			struct magcal_result *r)
 {
+	double c[MAGCAL_MAX_SAMPLES][3], u[MAGCAL_MAX_SAMPLES][3];
 	struct timed e[MAGCAL_MAX_SAMPLES], dip[MAGCAL_MAX_SAMPLES];
-	double a[NPARAM][NPARAM] = { { 0 } }, rhs[NPARAM] = { 0 }, x[NPARAM];
-	double cg[MAGCAL_MAX_SAMPLES][3], gp[MAGCAL_MAX_SAMPLES];
-	double c[3], g[3], row[4], theta[3] = { 0 }, nc, ng;
+	double rot[3][3], theta[3], cm[3], cr[3], sd;
 	unsigned int i, ne = 0, nd = 0;
-	int j, k;
+	int j;
+
+	sd = learn_turn(c, u, turn_samples(s, use, r, c, u), rot);
+	rot_to_vector(rot, theta);
+	r->turn_uncertainty_deg = sd * DEG_PER_RAD;
+	r->turn_trusted = r->turn_uncertainty_deg <=
+			  cfg->max_turn_uncertainty_deg;
+	if (!(norm3(theta) * DEG_PER_RAD <= MAX_TURN_DEG)) {
+		rot_from_vector((double[3]){ 0, 0, 0 }, rot);
+		rot_to_vector(rot, theta);
+		r->turn_trusted = false;
+	}
+	r->turn_deg = norm3(theta) * DEG_PER_RAD;
+	for (j = 0; j < 3; j++)
+		r->turn[j] = theta[j] * DEG_PER_RAD;
+	memcpy(r->rot, rot, sizeof(rot));
+	if (!r->turn_trusted)
+		rot_from_vector((double[3]){ 0, 0, 0 }, r->rot);
 
 	for (i = 0; i < s->n; i++) {
 		if (!use[i])
 			continue;
 		e[ne].seq = s->s[i].seq;
 		e[ne++].v = residual_ut(s, i, r);
-		magcal_apply(r, s->s[i].m, c);
-		if (!s->s[i].has_g || !(norm3(s->s[i].g) > 0) ||
-		    !(norm3(c) > 0))
+		if (!s->s[i].has_g || !(norm3(s->s[i].g) > 0))
 			continue;
-		nc = norm3(c);
-		ng = norm3(s->s[i].g);
-		for (j = 0; j < 3; j++) {
-			g[j] = s->s[i].g[j] / ng;
-			c[j] /= nc;
-		}
-		/* sin of the angle to up, and its change per rotation of c */
-		gp[nd] = c[0] * g[0] + c[1] * g[1] + c[2] * g[2];
-		cg[nd][0] = c[1] * g[2] - c[2] * g[1];
-		cg[nd][1] = c[2] * g[0] - c[0] * g[2];
-		cg[nd][2] = c[0] * g[1] - c[1] * g[0];
-		row[0] = 1;
-		for (j = 0; j < 3; j++)
-			row[1 + j] = -cg[nd][j];
-		for (j = 0; j < 4; j++) {
-			for (k = 0; k < 4; k++)
-				a[j][k] += row[j] * row[k];
-			rhs[j] += row[j] * gp[nd];
-		}
-		dip[nd++].seq = s->s[i].seq;
-	}
-	/*
-	 * The magnetometer turned against the accelerometer (an asymmetric
-	 * soft iron, which a magnitude fit cannot see) makes the dip depend
-	 * on the orientation: the rotation that best makes it constant is
-	 * taken out first, unless it is beyond any board's (MAX_TURN_DEG)
-	 */
-	if (nd >= 2 * DRIFT_WINDOW && solve(4, a, rhs, x) &&
-	    norm3(x + 1) * DEG_PER_RAD <= MAX_TURN_DEG)
-		memcpy(theta, x + 1, sizeof(theta));
-	r->turn_deg = norm3(theta) * DEG_PER_RAD;
-	for (j = 0; j < 3; j++)
-		r->turn[j] = theta[j] * DEG_PER_RAD;
-	for (i = 0; i < nd; i++) {
-		double v = gp[i] + cg[i][0] * theta[0] + cg[i][1] * theta[1] +
-			   cg[i][2] * theta[2];
-
-		dip[i].v = asin(fmax(-1, fmin(1, -v))) * DEG_PER_RAD;
+		magcal_apply(r, s->s[i].m, cm);
+		mat_vec(rot, cm, cr);
+		if (!(norm3(cr) > 0))
+			continue;
+		dip[nd].seq = s->s[i].seq;
+		dip[nd++].v = dip_of(cr, s->s[i].g);
 	}
 	r->drift_ut = drift(e, ne);
 	r->dip_drift_deg = drift(dip, nd);
@@ -994,6 +1149,8 @@ int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 		return -EINVAL;
 	memset(r, 0, sizeof(*r));
 	r->w[0][0] = r->w[1][1] = r->w[2][2] = 1;
+	r->rot[0][0] = r->rot[1][1] = r->rot[2][2] = 1;
+	r->turn_uncertainty_deg = INFINITY;
 	r->scale = 1;
 	for (i = 0; i < s->n; i++)
 		use[i] = true;
@@ -1007,7 +1164,7 @@ int magcal_solve(const struct magcal_session *s, struct magcal_result *r)
 		return 0;
 	}
 	quality(s, use, r);
-	consistency(s, use, r);
+	consistency(s, use, &s->cfg, r);
 	r->uncertainty_deg = uncertainty_deg(s, use, &f, r);
 	r->status = verdict(&s->cfg, r);
 	if (s->cfg.reference_field_ut > 0 && r->fitted_field_ut > 0)
@@ -1044,13 +1201,6 @@ void magcal_split(const struct magcal_result *r, double diag[3],
 	for (i = 0; i < 3; i++)
 		for (j = 0; j < 3; j++)
 			resid[i][j] = r->w[i][j] / diag[j];
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-	out[0] = a[1] * b[2] - a[2] * b[1];
-	out[1] = a[2] * b[0] - a[0] * b[2];
-	out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 int magcal_heading_deg(const double field[3], const double up[3],

@@ -94,6 +94,10 @@ enum magcal_status {
  *			drift_ut) above this: MAGCAL_INCONSISTENT
  * @max_dip_drift_deg:	slow drift of the dip (magcal_result
  *			dip_drift_deg) above this: MAGCAL_INCONSISTENT
+ * @max_turn_uncertainty_deg: the turn (magcal_result turn) is trusted
+ *			(given in @rot) only when its uncertainty is at most
+ *			this (0.3): orientations varied about one axis only
+ *			leave the turn about that axis unobserved
  */
 struct magcal_config {
 	unsigned int max_samples;
@@ -108,6 +112,7 @@ struct magcal_config {
 	double reference_field_ut;
 	double max_drift_ut;
 	double max_dip_drift_deg;
+	double max_turn_uncertainty_deg;
 };
 
 /**
@@ -146,11 +151,21 @@ struct magcal_config {
  * @turn_deg:	the magnetometer's turn against the accelerometer that best
  *		makes the dip constant over the orientations (an asymmetric
  *		soft iron), degrees, at most 5 (0: none found, or none that
- *		small); judged by the gate, not applied: @w stays symmetric
+ *		small). Learned only from the samples whose gravity's
+ *		magnitude is within 2 % of the median's (1 g: a hand's
+ *		linear acceleration biases the dip), exact for turns of a few
+ *		degrees (Gauss-Newton on the rotation)
  * @turn:	that turn as a rotation vector, degrees (its length is
  *		@turn_deg): the rotation by @turn of W (m - b) is the field
- *		in the accelerometer's frame. Not stored or applied by the
- *		daemon yet (issue 39, point 5); the sweep measures it
+ *		in the accelerometer's frame
+ * @turn_uncertainty_deg: the turn's standard deviation, degrees (the
+ *		square root of the trace of its covariance; infinite when
+ *		the samples do not determine it)
+ * @turn_trusted: @turn_uncertainty_deg is within config
+ *		max_turn_uncertainty_deg: the turn is measured, not guessed
+ * @rot:	the rotation to store and apply after W: the rotation by @turn
+ *		when @turn_trusted, else the identity. The full correction is
+ *		then @rot W (m - b) (magcal_apply() applies W only)
  */
 struct magcal_result {
 	enum magcal_status status;
@@ -170,6 +185,9 @@ struct magcal_result {
 	double dip_drift_deg;
 	double turn_deg;
 	double turn[3];
+	double turn_uncertainty_deg;
+	bool turn_trusted;
+	double rot[3][3];
 };
 
 struct magcal_session;

@@ -18,10 +18,10 @@
  * a stored calibration never has a heading error above 5 deg (a refusal
  * is fine). The exit status is 1 when a target is missed.
  *
- * The boards whose soft iron turns the field (asymmetric: not a
- * target, issue 39 point 3) are judged as stored today and with the
- * turn the fit sees (magcal_result turn) applied after the residual
- * matrix, which is what storing and applying it would give.
+ * The boards whose soft iron turns the field (asymmetric, issue 39
+ * point 3) are judged without the turn and with the turn the fit trusts
+ * (magcal_result rot: the identity when its uncertainty is above 0.3
+ * deg) applied after the residual matrix.
  *
  * Usage: bench_magcal_sweep [--full|--turned]   (default: a short sweep;
  * --turned: the turned boards alone)
@@ -93,6 +93,7 @@ struct run {
 	double drift_ut;
 	double dip_drift_deg;
 	double turn_deg;
+	bool turn_trusted;
 	struct score sc;
 	struct score turned;	/* with the turn applied (turned boards) */
 };
@@ -122,26 +123,12 @@ static void rotate_soft(struct as9888_unit *u, double deg)
 		u->soft_ppm[i] = (s32)lrint(out[i]);
 }
 
-/* @st with the rotation by the vector @deg (degrees) after its R */
-static void stack_turned(const struct stack *st, const double deg[3],
+/* @st with the rotation @rot after its R (magcal_result rot: trusted) */
+static void stack_turned(const struct stack *st, const double rot[3][3],
 			 struct stack *out)
 {
-	double a = sqrt(deg[0] * deg[0] + deg[1] * deg[1] + deg[2] * deg[2]);
-	double k[3] = { 0 }, c = cos(a * DEG), sn = sin(a * DEG), rot[3][3];
 	int i, j, l;
 
-	for (i = 0; a > 0 && i < 3; i++)
-		k[i] = deg[i] / a;
-	/* Rodrigues: cos I + sin [k]x + (1 - cos) k k^T */
-	for (i = 0; i < 3; i++)
-		for (j = 0; j < 3; j++)
-			rot[i][j] = (i == j) * c + (1 - c) * k[i] * k[j];
-	rot[0][1] -= sn * k[2];
-	rot[0][2] += sn * k[1];
-	rot[1][0] += sn * k[2];
-	rot[1][2] -= sn * k[0];
-	rot[2][0] -= sn * k[1];
-	rot[2][1] += sn * k[0];
 	*out = *st;
 	for (i = 0; i < 3; i++)
 		for (j = 0; j < 3; j++)
@@ -252,6 +239,7 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 	out->drift_ut = r.drift_ut;
 	out->dip_drift_deg = r.dip_drift_deg;
 	out->turn_deg = r.turn_deg;
+	out->turn_trusted = r.turn_trusted;
 	out->learn_s = (n + (n < total)) * INTERVAL_S;
 	out->stored = r.status == MAGCAL_OK && stack_from(&c, &r, &st);
 	if (out->stored) {
@@ -262,7 +250,7 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 		if (rot_deg) {
 			struct stack tst;
 
-			stack_turned(&st, r.turn, &tst);
+			stack_turned(&st, r.rot, &tst);
 			judge(&c, &u, &tst, &tst, sc);
 			out->turned = sc[CORR_SITE];
 		}
@@ -295,8 +283,8 @@ static void print_run(unsigned int b, const struct earth *e, double speed,
 
 /*
  * The soft iron turned by 1.5 and 3 deg on each of @boards boards in the
- * field @e at 4 deg per measurement: as stored today (the turn seen,
- * not applied), and with the turn applied
+ * field @e at 4 deg per measurement: without the turn, and with the
+ * turn trusted applied
  */
 static void turned_report(unsigned int boards, const struct earth *e)
 {
@@ -306,7 +294,7 @@ static void turned_report(unsigned int boards, const struct earth *e)
 	for (k = 0; k < 2; k++) {
 		double rot = k ? 3 : 1.5, sq = 0, worst = 0, turn = 0;
 		double tsq = 0, tworst = 0;
-		unsigned int cnt = 0;
+		unsigned int cnt = 0, trusted = 0;
 
 		for (b = 0; b < boards; b++) {
 			run_one(b, e, 4, NULL, 300 + b, rot, &r);
@@ -314,13 +302,14 @@ static void turned_report(unsigned int boards, const struct earth *e)
 				continue;
 			cnt++;
 			turn += r.turn_deg;
+			trusted += r.turn_trusted;
 			sq += r.sc.head_rms * r.sc.head_rms;
 			worst = fmax(worst, r.sc.head_worst);
 			tsq += r.turned.head_rms * r.turned.head_rms;
 			tworst = fmax(tworst, r.turned.head_worst);
 		}
-		printf("soft iron turned by %.1f deg (not learned, not a target): %u/%u boards learned, turn seen %.2f deg (mean), heading rms %.2f deg, worst %.2f deg; with the turn applied: heading rms %.2f deg, worst %.2f deg\n",
-		       rot, cnt, boards, cnt ? turn / cnt : 0,
+		printf("soft iron turned by %.1f deg: %u/%u boards learned, turn seen %.2f deg (mean), trusted on %u; without it: heading rms %.2f deg, worst %.2f deg; with the turn trusted applied: heading rms %.2f deg, worst %.2f deg\n",
+		       rot, cnt, boards, cnt ? turn / cnt : 0, trusted,
 		       cnt ? sqrt(sq / cnt) : 0, worst,
 		       cnt ? sqrt(tsq / cnt) : 0, tworst);
 	}

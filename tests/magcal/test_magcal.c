@@ -517,20 +517,28 @@ static void test_export(void **state)
 	magcal_free(t);
 }
 
-/* A random rotation (sensor to world), uniform */
-static void rotation(double r[3][3])
+/* A random unit vector of @n (3 or 4) components, uniform in direction */
+static void random_unit(double *v, int n)
 {
-	double q[4], n = 0;
+	double len;
 	int i;
 
 	do {
-		for (i = 0, n = 0; i < 4; i++) {
-			q[i] = 2 * uniform() - 1;
-			n += q[i] * q[i];
+		for (i = 0, len = 0; i < n; i++) {
+			v[i] = 2 * uniform() - 1;
+			len += v[i] * v[i];
 		}
-	} while (n > 1 || n < 0.01);
-	for (i = 0; i < 4; i++)
-		q[i] /= sqrt(n);
+	} while (len > 1 || len < 0.01);
+	for (i = 0; i < n; i++)
+		v[i] /= sqrt(len);
+}
+
+/* A random rotation (sensor to world), uniform */
+static void rotation(double r[3][3])
+{
+	double q[4];
+
+	random_unit(q, 4);
 	r[0][0] = 1 - 2 * (q[2] * q[2] + q[3] * q[3]);
 	r[0][1] = 2 * (q[1] * q[2] - q[0] * q[3]);
 	r[0][2] = 2 * (q[1] * q[3] + q[0] * q[2]);
@@ -550,14 +558,51 @@ static void rotation(double r[3][3])
  * magnetometer itself turned against the accelerometer by @mount_deg
  * about its X axis all along (an asymmetric soft iron)
  */
+static struct magcal_result session_turned(double bump_ut, double turn_deg,
+					   const double mount[3][3],
+					   const double *one_axis);
+
 static struct magcal_result session_in_time(double bump_ut, double turn_deg,
 					    double mount_deg)
+{
+	double c = cos(mount_deg * DEG), s = sin(mount_deg * DEG);
+	const double mount[3][3] = { { 1, 0, 0 }, { 0, c, -s }, { 0, s, c } };
+
+	return session_turned(bump_ut, turn_deg, mount, NULL);
+}
+
+/* The rotation by @deg about the unit @axis */
+static void axis_rotation(const double axis[3], double deg, double r[3][3])
+{
+	double c = cos(deg * DEG), s = sin(deg * DEG);
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			r[i][j] = (1 - c) * axis[i] * axis[j] + (i == j ? c : 0);
+	r[0][1] -= s * axis[2];
+	r[1][0] += s * axis[2];
+	r[0][2] += s * axis[1];
+	r[2][0] -= s * axis[1];
+	r[1][2] -= s * axis[0];
+	r[2][1] += s * axis[0];
+}
+
+/*
+ * The same with the magnetometer turned by @mount against the
+ * accelerometer (it reads mount f for a field f), the orientations
+ * random, or with @one_axis (a unit vector in the sensor frame) turns
+ * about that one axis only from one random orientation
+ */
+static struct magcal_result session_turned(double bump_ut, double turn_deg,
+					   const double mount[3][3],
+					   const double *one_axis)
 {
 	struct board b = board_a;
 	struct magcal_session *s = magcal_new(NULL);
 	struct magcal_result res;
-	double r[3][3], w[3], f[3], up[3], m[3], k, dip;
-	int n, i;
+	double r[3][3], r0[3][3], spin[3][3], w[3], f[3], up[3], m[3], k, dip;
+	int n, i, j;
 
 	assert_non_null(s);
 	b.noise = 0.3;
@@ -568,14 +613,25 @@ static struct magcal_result session_in_time(double bump_ut, double turn_deg,
 		w[1] = (48 + bump_ut * k) * cos(dip);
 		w[2] = -(48 + bump_ut * k) * sin(dip);
 		rotation(r);
+		if (one_axis) {
+			/* R = R0 spin: turned about one axis of the sensor */
+			if (!n)
+				memcpy(r0, r, sizeof(r0));
+			axis_rotation(one_axis, 360 * uniform(), spin);
+			for (i = 0; i < 3; i++)
+				for (j = 0; j < 3; j++)
+					r[i][j] = r0[i][0] * spin[0][j] +
+						  r0[i][1] * spin[1][j] +
+						  r0[i][2] * spin[2][j];
+		}
 		for (i = 0; i < 3; i++) {
 			/* sensor = R^T world */
-			f[i] = r[0][i] * w[0] + r[1][i] * w[1] + r[2][i] * w[2];
+			m[i] = r[0][i] * w[0] + r[1][i] * w[1] + r[2][i] * w[2];
 			up[i] = r[2][i];
 		}
-		k = f[1];
-		f[1] = cos(mount_deg * DEG) * k - sin(mount_deg * DEG) * f[2];
-		f[2] = sin(mount_deg * DEG) * k + cos(mount_deg * DEG) * f[2];
+		for (i = 0; i < 3; i++)
+			f[i] = mount[i][0] * m[0] + mount[i][1] * m[1] +
+			       mount[i][2] * m[2];
 		k = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
 		for (i = 0; i < 3; i++)
 			f[i] /= k;
@@ -627,6 +683,67 @@ static void test_gate(void **state)
 	assert_true(r.dip_drift_deg > 1.0);
 	assert_string_equal(magcal_status_str(r.status),
 			    "field changed during the session");
+}
+
+/* The angle (deg) of the rotation @a @b */
+static double product_angle(const double a[3][3], const double b[3][3])
+{
+	double tr = 0;
+	int i, k;
+
+	for (i = 0; i < 3; i++)
+		for (k = 0; k < 3; k++)
+			tr += a[i][k] * b[k][i];
+	return acos(fmax(-1, fmin(1, (tr - 1) / 2))) / DEG;
+}
+
+/*
+ * The soft iron's turn (issue 39, point 5): 3 deg about a random axis is
+ * learned within 0.1 deg and trusted (rot undoes the mount); from a board
+ * turned about one axis only it is not determined, and rot stays the
+ * identity
+ */
+static void test_turn(void **state)
+{
+	static const double identity[3][3] = { { 1, 0, 0 }, { 0, 1, 0 },
+					       { 0, 0, 1 } };
+	double axis[3], mount[3][3];
+	struct magcal_result r;
+	int k;
+
+	(void)state;
+	rng_state = 39;
+	for (k = 0; k < 4; k++) {
+		random_unit(axis, 3);
+		axis_rotation(axis, 3, mount);
+		r = session_turned(0, 0, mount, NULL);
+		assert_int_equal(r.status, MAGCAL_OK);
+		assert_true(r.turn_trusted);
+		assert_true(r.turn_uncertainty_deg < 0.3);
+		assert_true(fabs(r.turn_deg - 3) < 0.1);
+		/* rot mount is the identity within 0.1 deg */
+		print_message("turned 3 deg: found %.3f deg, %.3f deg off, uncertainty %.3f deg\n",
+			      r.turn_deg, product_angle(r.rot, mount),
+			      r.turn_uncertainty_deg);
+		assert_true(product_angle(r.rot, mount) < 0.1);
+	}
+	/* no turn: none learned (rot within 0.1 deg of the identity) */
+	r = session_turned(0, 0, identity, NULL);
+	assert_true(r.turn_trusted);
+	assert_true(product_angle(r.rot, identity) < 0.1);
+
+	/* turned about one axis only: a turn about it is not observed */
+	for (k = 0; k < 3; k++) {
+		random_unit(axis, 3);
+		axis_rotation(axis, 3, mount);
+		random_unit(axis, 3);
+		r = session_turned(0, 0, mount, axis);
+		print_message("one axis: turn %.2f deg, uncertainty %.2f deg\n",
+			      r.turn_deg, r.turn_uncertainty_deg);
+		assert_false(r.turn_trusted);
+		assert_true(r.turn_uncertainty_deg > 0.3);
+		assert_true(product_angle(r.rot, identity) == 0);
+	}
 }
 
 /* Degenerate input: a status, never a crash or a NaN called ok */
@@ -740,6 +857,7 @@ int main(void)
 		cmocka_unit_test(test_store),
 		cmocka_unit_test(test_export),
 		cmocka_unit_test(test_gate),
+		cmocka_unit_test(test_turn),
 		cmocka_unit_test(test_degenerate),
 		cmocka_unit_test(test_split_apply),
 		cmocka_unit_test(test_heading),
