@@ -66,24 +66,31 @@ static void post(void *ctx, const struct as9888_event *ev, size_t n)
 	pthread_mutex_unlock(&x->lock);
 }
 
-/* Wait for @n events in all; fails on a stall */
-static void wait_events(struct fixture *x, size_t n)
+/* Whether @n events came in all; false after a stall (STALL_S without one) */
+static bool events_came(struct fixture *x, size_t n)
 {
 	struct timespec until;
+	bool ok = true;
 
 	pthread_mutex_lock(&x->lock);
-	while (x->nev < n) {
+	while (ok && x->nev < n) {
 		size_t had = x->nev;
 
 		clock_gettime(CLOCK_REALTIME, &until);
 		until.tv_sec += STALL_S;
 		if (pthread_cond_timedwait(&x->cond, &x->lock, &until) == ETIMEDOUT &&
-		    x->nev == had) {
-			pthread_mutex_unlock(&x->lock);
-			fail_msg("stalled at %zu events of %zu", had, n);
-		}
+		    x->nev == had)
+			ok = false;
 	}
 	pthread_mutex_unlock(&x->lock);
+	return ok;
+}
+
+/* Wait for @n events in all; fails on a stall */
+static void wait_events(struct fixture *x, size_t n)
+{
+	if (!events_came(x, n))
+		fail_msg("stalled at %zu events of %zu", x->nev, n);
 }
 
 static size_t count_of(struct fixture *x, int handle)
@@ -461,6 +468,98 @@ static void batching_and_flush(void **state)
 	assert_int_equal(x->ev[9].type, AS9888_TYPE_META_DATA);
 }
 
+/* The magnetometer's activate on its own thread (it blocks in its set-up) */
+struct activation {
+	struct fixture *x;
+	pthread_t thread;
+	int ret;
+	bool returned;
+};
+
+static void *activate_magn(void *arg)
+{
+	struct activation *a = arg;
+	int ret = as9888_hal_activate(a->x->h, AS9888_HANDLE_MAGN, true);
+
+	pthread_mutex_lock(&a->x->lock);
+	a->ret = ret;
+	a->returned = true;
+	pthread_mutex_unlock(&a->x->lock);
+	return NULL;
+}
+
+/*
+ * A sensor activated while another runs: the running device's events keep
+ * coming while the new one's buffer is set up. The magnetometer's
+ * in_magn_x_type is a FIFO, so its set-up waits in that read until the
+ * test writes the type; meanwhile an accelerometer sample must arrive
+ * (a HAL that sets buffers up on its reader thread delivers nothing until
+ * the set-up ends: a stall). Then both run, each event once; deactivated,
+ * each buffer is off.
+ */
+static void running_stream_flows_during_setup(void **state)
+{
+	struct fixture *x = *state;
+	struct activation a = { .x = x };
+	char type[300];
+	int fd = -1, tries;
+	bool came, returned;
+
+	open_hal(x);
+	activate(x, AS9888_HANDLE_ACCEL, 10000000, 0);
+	put_accel(x, 0, 0, 1024, 1000);
+	wait_events(x, 1);
+	snprintf(type, sizeof(type), "%s/scan_elements/in_magn_x_type", x->f->magn);
+	assert_int_equal(unlink(type), 0);
+	assert_int_equal(mkfifo(type, 0600), 0);
+	assert_int_equal(as9888_hal_batch(x->h, AS9888_HANDLE_MAGN, 100000000, 0), 0);
+	assert_int_equal(pthread_create(&a.thread, NULL, activate_magn, &a), 0);
+	/* the set-up has opened the type to read it: a writer can open it */
+	for (tries = 0; fd < 0 && tries < STALL_S * 100; tries++) {
+		struct timespec pause = { 0, 10000000 };
+
+		fd = open(type, O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+		if (fd < 0 && errno == ENXIO)
+			nanosleep(&pause, NULL);
+		else
+			assert_true(fd >= 0);
+	}
+	assert_true(fd >= 0);
+	put_accel(x, 0, 0, 1024, 11001000);
+	came = events_came(x, 2);
+	pthread_mutex_lock(&x->lock);
+	returned = a.returned;
+	pthread_mutex_unlock(&x->lock);
+	/* the set-up goes on either way, so that a failure does not hang */
+	assert_int_equal(write(fd, "le:s13/16>>0\n", 13), 13);
+	close(fd);
+	assert_int_equal(pthread_join(a.thread, NULL), 0);
+	if (!came)
+		fail_msg("no accelerometer event in %d s while the magnetometer was set up",
+			 STALL_S);
+	assert_false(returned);
+	assert_int_equal(a.ret, 0);
+	assert_attr(x->f->magn, "buffer/enable", "1");
+	assert_attr(x->f->dev, "buffer/enable", "1");
+	/* both run, every sample once */
+	snprintf(type, sizeof(type), "%s/iio:device1", x->dir);
+	x->fifo[1] = open(type, O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+	assert_true(x->fifo[1] >= 0);
+	put_magn(x, 1, 2, 3, 20000000);
+	put_accel(x, 0, 0, 1024, 21001000);
+	wait_events(x, 4);
+	assert_int_equal(count_of(x, AS9888_HANDLE_ACCEL), 3);
+	assert_int_equal(count_of(x, AS9888_HANDLE_MAGN), 1);
+	/* the magnetometer off: its buffer off, the accelerometer's flowing */
+	assert_int_equal(as9888_hal_activate(x->h, AS9888_HANDLE_MAGN, false), 0);
+	assert_attr(x->f->magn, "buffer/enable", "0");
+	put_accel(x, 0, 0, 1024, 31001000);
+	wait_events(x, 5);
+	assert_int_equal(count_of(x, AS9888_HANDLE_ACCEL), 4);
+	assert_int_equal(as9888_hal_activate(x->h, AS9888_HANDLE_ACCEL, false), 0);
+	assert_attr(x->f->dev, "buffer/enable", "0");
+}
+
 /* A bad attribute: activate fails, says which, leaves the buffer off */
 static void bad_attribute(void **state)
 {
@@ -504,6 +603,7 @@ int main(void)
 		cmocka_unit_test_setup_teardown(magnetometer_without_record, setup, teardown),
 		cmocka_unit_test_setup_teardown(unequal_rates, setup, teardown),
 		cmocka_unit_test_setup_teardown(batching_and_flush, setup, teardown),
+		cmocka_unit_test_setup_teardown(running_stream_flows_during_setup, setup, teardown),
 		cmocka_unit_test_setup_teardown(bad_attribute, setup, teardown),
 		cmocka_unit_test_setup_teardown(open_errors, setup, teardown),
 	};
