@@ -12,7 +12,9 @@ for t in /tests/tests/*.sh; do
 	fi
 	# (the file's name kept apart: a test file may use $t for itself)
 	RA_FILE=$(basename "$t" .sh)
-	diag "--- $RA_FILE.sh (uptime $(cut -d' ' -f1 /proc/uptime) s)"
+	# uptime and the guest's idle time (/proc/uptime), so a file's share
+	# of the host's cores shows: a TCG guest's idle time is the host's
+	diag "--- $RA_FILE.sh ($(awk '{ printf "uptime %s s, idle %s s", $1, $2 }' /proc/uptime))"
 	# the file's plan (lib.sh plan) against the checks it made, for the host
 	T_PLAN=""
 	T_FILE0=$T_N
@@ -20,5 +22,6 @@ for t in /tests/tests/*.sh; do
 	diag "AS9888-PLAN $RA_FILE planned=${T_PLAN:-none} made=$((T_N - T_FILE0))"
 done
 leak_check
+diag "--- end ($(awk '{ printf "uptime %s s, idle %s s", $1, $2 }' /proc/uptime))"
 echo "1..$T_N"
 echo "# AS9888-VM-RESULT passed=$T_PASS failed=$T_FAIL skipped=$T_SKIP"
