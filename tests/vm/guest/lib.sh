@@ -95,6 +95,8 @@ near() {
 # KERN_INFO: not on the console); kmsg_since NAME PATTERN: a kernel message
 # after the last such mark matches PATTERN (grep). Only the messages of
 # what ran since count, however full the log is.
+# ms_now: uptime in milliseconds (10 ms resolution), for wall times
+ms_now() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
 kmsg_mark() { echo "<6>as9888-bench: mark $1" > /dev/kmsg; }
 kmsg_since() {
 	dmesg | awk -v m="as9888-bench: mark $1" 'index($0, m) { n = NR } { l[NR] = $0 }
@@ -223,24 +225,23 @@ rebind() {
 client() { cut -d' ' -f2 $SIM/bus; }
 # raw_line GPIOINFO NAME: the number of the line AS9888_NAME in a listing
 raw_line() { sed -n "s/^[[:space:]]*line *\([0-9]*\): *\"AS9888_$2\".*/\1/p" "$1"; }
-# The daemon tests' healthy unit (80, 85, 86): a level board at 25 degC
-# whose offsets the factory test trims away
+# The daemon tests' healthy unit (80 and 82 to 86): a level board at
+# 25 degC whose offsets the factory test trims away
 HEALTHY_UNIT="temperature = 25
 offset = 40 -25 60
 noise = 0.5
 seed = 7"
-# daemon_fixture: /tmp/unit.txt (HEALTHY_UNIT) and /tmp/rec, its record
-# from the factory test through the driver, as 80-daemon.sh leaves them;
-# made here when 80 did not run (AS9888_VM_ONLY without it). Leaves the
-# chip as that unit, the driver bound
+# daemon_fixture: /tmp/rec, the record of HEALTHY_UNIT from the factory
+# test through the driver, as 80-daemon.sh leaves it; made here when 80 did
+# not run (AS9888_VM_ONLY without it). Leaves the chip as that unit, the
+# driver bound
 daemon_fixture() {
-	[ -s /tmp/unit.txt ] && [ -s /tmp/rec ] && return 0
+	[ -s /tmp/rec ] && return 0
 	diag "no /tmp/rec of 80-daemon.sh: the factory test through the driver on its unit makes it"
-	printf '%s\n' "$HEALTHY_UNIT" > /tmp/unit.txt
 	load_sim
 	load_driver
 	dev_stale
-	cat /tmp/unit.txt > $SIM/unit
+	printf '%s\n' "$HEALTHY_UNIT" > $SIM/unit
 	wait_dev 5 &&
 		/bin/as9888-calibd factory-test --backend iio --record /tmp/rec > /tmp/fixture.log 2>&1 ||
 		sed 's/^/# fixture: /' /tmp/fixture.log

@@ -7,12 +7,13 @@
 # vertical one); also after a driver reload. Refused, with nothing applied:
 # a record of another chip, and a record of the simulator (source =
 # simulator: a simulated calibration is never applied to a chip).
-# Leaves /tmp/rec and /tmp/unit.txt for 85 and 86 (lib.sh daemon_fixture).
+# Leaves /tmp/rec for 85 and 86 (lib.sh daemon_fixture).
 plan 19
 load_sim
 load_driver
 U=$HEALTHY_UNIT
-printf '%s\n' "$U" > /tmp/unit.txt
+mkdir -p /tmp/daemon
+printf '%s\n' "$U" > /tmp/daemon/unit.txt
 dev_stale
 printf '%s\n' "$U" > $SIM/unit
 wait_dev 5
@@ -48,7 +49,7 @@ eq "same DAC after reload + restore" "$(dac_get)" "$D"
 accel_near "compensated readings after reload + restore: 0 0 1 g" "$(accel_mean 16)" "0 0 $G_LSB" 4
 
 # A record of the simulator, for the same unit: refused
-$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/unit.txt --record /tmp/rec-sim > /tmp/ft-sim.log 2>&1
+$CALIBD factory-test --backend sim --sim-clock virtual --unit /tmp/daemon/unit.txt --record /tmp/rec-sim > /tmp/ft-sim.log 2>&1
 check "the simulator's record says so (source = simulator)" grep -qx "source = simulator" /tmp/rec-sim
 put_cal $CAL0
 $CALIBD restore --backend iio --record /tmp/rec-sim > /tmp/r2.log 2>&1

@@ -15,13 +15,8 @@ plan 85
 CALIBD=/bin/as9888-calibd
 RD=/tmp/raw
 REC=$RD/rec
-U="temperature = 25
-offset = 40 -25 60
-noise = 0.5
-seed = 7"
+U=$HEALTHY_UNIT
 
-# uptime in milliseconds (10 ms resolution)
-ms_now() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
 # jtop FILE KEY: a top-level value of the factory test's JSON, quotes removed
 jtop() { sed -n "s/^  \"$2\": \"\{0,1\}\([^\",]*\)\"\{0,1\},\{0,1\}$/\1/p" "$1"; }
 # jstep FILE NAME: the result of the judgment NAME
@@ -97,8 +92,6 @@ check "the report has its duration" awk "BEGIN { exit !($DUR > 0 && $DUR <= $WAL
 # sample's overlapped read: that pair is taken again (overlap_lost), which
 # draws other noise, so level_mean is compared when nothing was lost (a
 # second raw run cannot stand in: the chip's noise generator has moved on).
-# (its own copy of the unit: 80-daemon.sh's /tmp/unit.txt is not there
-# when this file runs without it)
 printf '%s\n' "$U" > $RD/unit.txt
 $CALIBD factory-test --backend sim --sim-clock virtual --unit $RD/unit.txt \
 	--record $RD/sim > /dev/null 2>&1

@@ -19,22 +19,16 @@ CALIBD=/bin/as9888-calibd
 SP=/tmp/speed
 ROUNDS=5
 RATIO_MAX=1.5
-U83="temperature = 25
-offset = 40 -25 60
-noise = 0.5
-seed = 7"
 
-# sp_ms: uptime in milliseconds (10 ms resolution)
-sp_ms() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
 # sp_run NAME OPTIONS...: one factory test; appends "duration wall" to
 # $SP/NAME.times when it passed, says why when it did not
 sp_run() {
 	_sr_n=$1; shift
-	_sr_t0=$(sp_ms)
+	_sr_t0=$(ms_now)
 	$CALIBD factory-test "$@" --json --record $SP/$_sr_n.rec \
 		> $SP/$_sr_n.json 2> $SP/$_sr_n.err
 	_sr_rc=$?
-	_sr_w=$(($(sp_ms) - _sr_t0))
+	_sr_w=$(($(ms_now) - _sr_t0))
 	_sr_d=$(sed -n 's/^  "duration_ms": \([0-9.]*\),*$/\1/p' $SP/$_sr_n.json)
 	if [ $_sr_rc = 0 ] && grep -q '^  "result": "pass"' $SP/$_sr_n.json &&
 		[ -n "$_sr_d" ]; then
@@ -56,7 +50,7 @@ load_driver
 mkdir -p $SP
 rm -f $SP/*.times
 dev_stale
-printf '%s\n' "$U83" > $SIM/unit
+printf '%s\n' "$HEALTHY_UNIT" > $SIM/unit
 wait_dev 5
 raw_find $SP/gpioinfo
 diag "raw: $RAW"
@@ -66,7 +60,7 @@ while [ $r -le $ROUNDS ]; do
 	# as 82-daemon-raw.sh: the driver unloaded, the unit powered again
 	# (the driver's runtime PM had switched it off); the client stays
 	rmmod as9888_i2c
-	printf '%s\n' "$U83" > $SIM/unit
+	printf '%s\n' "$HEALTHY_UNIT" > $SIM/unit
 	sp_run raw $RAW
 	RAW_LAST=$SR_LAST
 	dev_stale

@@ -8,10 +8,6 @@
 # fault fails at its step; the device's attributes are left as found.
 plan 56
 CALIBD=/bin/as9888-calibd
-U84="temperature = 25
-offset = 40 -25 60
-noise = 0.5
-seed = 7"
 mkdir -p /tmp/iio
 
 # json_field FILE KEY: a top-level string or number of the JSON report
@@ -36,7 +32,6 @@ state() {
 	done
 	for e in $(se_dir $MDEV)/*_en; do echo "magn $(basename $e)=$(cat $e)"; done
 }
-uptime_ms() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
 # nak_end_ok: the run of the nak fault ($GOT its end) passed, ended at 4-1,
 # or its first failure is at the step $GOT and is an interface's failure
 # (no limits: a read or write the NAK broke), not a judgment of the chip's
@@ -47,17 +42,17 @@ nak_end_ok() {
 		grep -q "\"step\": \"$GOT\".*\"limits\": \"\""
 }
 ft_iio() {
-	_t0=$(uptime_ms)
+	_t0=$(ms_now)
 	$CALIBD factory-test --backend iio --json "$@" > /tmp/iio/ft.json 2> /tmp/iio/ft.err
 	FT_RC=$?
-	FT_WALL_MS=$(( $(uptime_ms) - _t0 ))
+	FT_WALL_MS=$(( $(ms_now) - _t0 ))
 }
 
 load_driver
 load_sim
-printf '%s\n' "$U84" > /tmp/iio/unit.txt
+printf '%s\n' "$HEALTHY_UNIT" > /tmp/iio/unit.txt
 dev_stale
-printf '%s\n' "$U84" > $SIM/unit
+printf '%s\n' "$HEALTHY_UNIT" > $SIM/unit
 wait_dev 5
 
 # Leave odd settings in place: the test must put every one of them back

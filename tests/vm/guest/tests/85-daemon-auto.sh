@@ -14,7 +14,7 @@ daemon_fixture
 load_sim
 load_driver
 dev_stale
-cat /tmp/unit.txt > $SIM/unit
+printf '%s\n' "$HEALTHY_UNIT" > $SIM/unit
 wait_dev 5
 # the calibration the record gives, as the driver reads it back
 $CALIBD restore --backend iio --record /tmp/rec > /dev/null 2>&1

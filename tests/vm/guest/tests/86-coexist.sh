@@ -21,7 +21,7 @@ daemon_fixture
 load_sim
 load_driver
 dev_stale
-cat /tmp/unit.txt > $SIM/unit
+printf '%s\n' "$HEALTHY_UNIT" > $SIM/unit
 wait_dev 5
 NAME=$(cat $DEV/name)
 T=$(dr_trig)
