@@ -3,12 +3,14 @@
  * The AS9888 magnetometer calibration for applications and sensor HALs.
  *
  * as9888-calibd keeps the calibration learned by `as9888-calibd
- * magn-calibrate` (and refined by the daemon) in its record
- * (daemon/RECORD.md, format 2) and puts what the kernel takes in a
- * standard form into the driver at boot: in_magn_<axis>_calibbias (the
- * hard iron, whole LSB) and in_magn_<axis>_calibscale (the soft iron's
- * diagonal). What the kernel cannot take is the soft iron's cross terms
- * (and the part of the hard iron below one LSB): this API applies it.
+ * magn-calibrate` (and refined by the daemon) beside its record, in
+ * <record>.magn (daemon/RECORD.md; a format 2 record's section is read
+ * too), and puts what the kernel takes in a standard form into the driver
+ * at boot: in_magn_<axis>_calibbias (the hard iron, whole LSB) and
+ * in_magn_<axis>_calibscale (the soft iron's diagonal). What the kernel
+ * cannot take is the soft iron's cross terms and its turn against the
+ * accelerometer (and the part of the hard iron below one LSB): this API
+ * applies it.
  *
  *	struct as9888_magn_calibration cal;
  *	char err[256];
@@ -21,8 +23,8 @@
  *	as9888_magn_correct(&cal, y, f);	f: the calibrated field, uT
  *
  * A HAL reports TYPE_MAGNETIC_FIELD = f and TYPE_MAGNETIC_FIELD_UNCALIBRATED
- * = f + bias with the bias as9888_magn_hal_bias() gives (W * b: the hard
- * iron in the soft-iron-corrected frame, so that uncalibrated - bias is
+ * = f + bias with the bias as9888_magn_hal_bias() gives (Rrot * W * b: the
+ * hard iron in the corrected frame, so that uncalibrated - bias is
  * exactly the calibrated field).
  *
  * Plain C99 with doubles, no global state, thread-safe.
@@ -39,8 +41,10 @@ extern "C" {
 /**
  * struct as9888_magn_calibration - one chip's magnetometer calibration
  * @hard_iron_ut: b, the hard iron in the sensor frame, uT
- * @soft_iron:	W: the calibrated field is W * (m - b) for a field m
- *		read without any calibration
+ * @soft_iron:	W (symmetric): the calibrated field is Rrot * W * (m - b)
+ *		for a field m read without any calibration
+ * @rotation:	Rrot, the soft iron's turn against the accelerometer
+ *		(the identity when none was learned or stored)
  * @field_ut:	the field magnitude the fit found
  * @residual_ut: the fit's residual, rms
  * @coverage:	the orientation coverage of the samples it used, 0..1
@@ -48,9 +52,10 @@ extern "C" {
  * @learned:	when it was learned, seconds since the epoch
  * @calibbias:	what restore writes into in_magn_<axis>_calibbias
  * @calibscale:	what restore writes into in_magn_<axis>_calibscale
- * @residual:	R = W * D^-1 (D: diag(@calibscale)): what userspace applies
+ * @residual:	R = Rrot * W * D^-1 (D: diag(@calibscale)): what userspace
+ *		applies
  * @offset_ut:	e = D * (calibbias * scale + b): the bias below one LSB
- * @hal_bias_ut: W * b, the bias of TYPE_MAGNETIC_FIELD_UNCALIBRATED
+ * @hal_bias_ut: Rrot * W * b, the bias of TYPE_MAGNETIC_FIELD_UNCALIBRATED
  */
 struct as9888_magn_calibration {
 	double hard_iron_ut[3];
@@ -65,10 +70,13 @@ struct as9888_magn_calibration {
 	double residual[3][3];
 	double offset_ut[3];
 	double hal_bias_ut[3];
+	double rotation[3][3];
 };
 
 /*
- * Read the record at @path (validated whole, checksum included). 0;
+ * Read the record at @path and the magnetometer's file beside it,
+ * <@path>.magn, when there is one (each validated whole, checksum
+ * included). 0;
  * -ENOENT (no record), -ENODATA (a record without a magnetometer
  * calibration), -EINVAL (not a valid record), -EPERM (a record made on
  * the simulator, which fits no real chip) or another -errno, with the

@@ -68,18 +68,26 @@ int cmd_recalibrate(const struct cli_opts *o)
 }
 
 /*
- * Through the driver, after the pair was swapped: the rolled-back record
- * applied, or the swap undone (the pair as it was) when the device takes
- * none of it. 0 or -1, said on stderr.
+ * Through the driver, after the pairs were swapped (the magnetometer's
+ * too with @magn): the rolled-back record applied, or the swaps undone
+ * (the pairs as they were) when the device takes none of it. 0 or -1,
+ * said on stderr.
  */
 static int rollback_apply_iio(const struct cli_opts *o, const char *cur_text,
-			      long cur_len, const char *prev_text, long prev_len)
+			      long cur_len, const char *prev_text, long prev_len,
+			      const struct calib_record *rec, bool magn)
 {
 	char dir[IIO_PATH_MAX], err[SESSION_ERR_LEN];
 
 	if (!iio_find_device(NULL, dir, sizeof(dir)) &&
 	    !iio_restore(o->record_path, dir, false))
 		return 0;
+	if (magn && session_magn_rollback(o->record_path, rec, true, err,
+					  sizeof(err)) < 0) {
+		fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device, and %s%s could not be put back: %s\n",
+			o->record_path, RECORD_MAGN_SUFFIX, err);
+		return -1;
+	}
 	if (record_pair_replace(o->record_path, cur_text, (size_t)cur_len,
 				prev_text, (size_t)prev_len, RECORD_MODE, err,
 				sizeof(err))) {
@@ -94,7 +102,9 @@ static int rollback_apply_iio(const struct cli_opts *o, const char *cur_text,
 
 /*
  * current := previous, previous := current, as one crash-safe change
- * (record_pair.h): never losing either. On the raw and simulated chips the
+ * (record_pair.h): never losing either; then the magnetometer's file
+ * <path>.magn and its previous one the same way, when there is a
+ * previous one (each command that changes one changes both). On the raw and simulated chips the
  * previous record is applied first, so a chip it does not belong to leaves
  * the pair as it was; through the driver the restore reads the record
  * file, so the pair is swapped first and swapped back when the device
@@ -107,6 +117,7 @@ int cmd_rollback(const struct cli_opts *o)
 	struct calib_record cur, before;
 	long cur_len, prev_len;
 	bool iio = o->backend == CLI_BACKEND_IIO;
+	int magn;
 
 	snprintf(prev, sizeof(prev), "%s%s", o->record_path, SESSION_PREVIOUS_SUFFIX);
 	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
@@ -125,6 +136,14 @@ int cmd_rollback(const struct cli_opts *o)
 			prev);
 		return EXIT_FAILURE;
 	}
+	/* the magnetometer's pair readable before anything changes */
+	magn = session_magn_rollback(o->record_path, &cur, false, err,
+				     sizeof(err));
+	if (magn < 0) {
+		fprintf(stderr, "as9888-calibd: rollback: %s; nothing changed\n",
+			err);
+		return EXIT_FAILURE;
+	}
 	/* its own message says "nothing applied"; the pair is untouched */
 	if (!iio && session_apply_record(o, &before))
 		return EXIT_FAILURE;
@@ -137,10 +156,22 @@ int cmd_rollback(const struct cli_opts *o)
 				o->record_path);
 		return EXIT_FAILURE;
 	}
-	if (iio && rollback_apply_iio(o, cur_text, cur_len, prev_text, prev_len))
+	if (magn)
+		magn = session_magn_rollback(o->record_path, &cur, true, err,
+					     sizeof(err));
+	if (magn < 0) {
+		fprintf(stderr, "as9888-calibd: rollback: %s holds the accelerometer's calibration from before the last change, but the magnetometer's (%s%s) is not rolled back: %s\n",
+			o->record_path, o->record_path, RECORD_MAGN_SUFFIX, err);
+		return EXIT_FAILURE;
+	}
+	if (iio && rollback_apply_iio(o, cur_text, cur_len, prev_text, prev_len,
+				      &cur, magn))
 		return EXIT_FAILURE;
 	printf("Rolled back: %s holds the calibration from before the last recalibration\n",
 	       o->record_path);
+	if (magn)
+		printf("Rolled back: %s%s holds the magnetometer's calibration from before the last change\n",
+		       o->record_path, RECORD_MAGN_SUFFIX);
 	return EXIT_SUCCESS;
 }
 

@@ -88,6 +88,14 @@ static void print_fit(const struct calib_magn *m, const struct magn_session_resu
 		printf("  %s %.6f %.6f %.6f\n", i ? "              " : "soft iron W  ",
 		       m->soft_iron_micro[i][0] / 1e6, m->soft_iron_micro[i][1] / 1e6,
 		       m->soft_iron_micro[i][2] / 1e6);
+	/* the soft iron's turn against the accelerometer (magcal's judgment) */
+	if (res->fit.turn_trusted)
+		printf("  turn against the accelerometer %.2f deg (+-%.2f), stored: about (%.3f %.3f %.3f) deg\n",
+		       res->fit.turn_deg, res->fit.turn_uncertainty_deg,
+		       res->fit.turn[0], res->fit.turn[1], res->fit.turn[2]);
+	else
+		printf("  turn against the accelerometer not stored (identity): the motion does not determine it (uncertain by %.2f deg, more than 0.3: turned about one axis only?)\n",
+		       res->fit.turn_uncertainty_deg);
 }
 
 int cmd_magn_calibrate(const struct cli_opts *o)

@@ -2,6 +2,7 @@
 /* The magnetometer calibration for applications (as9888_magn.h). */
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
@@ -55,6 +56,44 @@ static int read_text(const char *path, char *buf, size_t size, size_t *len,
 	return 0;
 }
 
+/*
+ * The magnetometer's file beside the record (<@path>.magn), when there is
+ * one: @rec->magn is what it holds. 0, or -errno with why in @err.
+ */
+static int read_magn_file(const char *path, struct calib_record *rec,
+			  char *err, size_t errlen)
+{
+	char file[PATH_MAX], buf[RECORD_MAX_SIZE + 1], why[256];
+	struct calib_magn m;
+	size_t len = 0;
+	uint64_t chip;
+	int ret;
+
+	if (snprintf(file, sizeof(file), "%s%s", path, RECORD_MAGN_SUFFIX) >=
+	    (int)sizeof(file)) {
+		snprintf(err, errlen, "%s: path too long", path);
+		return -ENAMETOOLONG;
+	}
+	ret = read_text(file, buf, sizeof(buf), &len, err, errlen);
+	if (ret == -ENOENT)
+		return 0;
+	if (ret)
+		return ret;
+	if (record_magn_parse(buf, len, &m, &chip, why, sizeof(why))) {
+		snprintf(err, errlen, "%s: not a valid magnetometer calibration: %s",
+			 file, why);
+		return -EINVAL;
+	}
+	if (chip != record_fingerprint(rec->eeprom)) {
+		snprintf(err, errlen, "%s belongs to another chip than %s: not used",
+			 file, path);
+		return -EINVAL;
+	}
+	rec->magn = m;
+
+	return 0;
+}
+
 int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,
 		     char *err, size_t errlen)
 {
@@ -73,6 +112,9 @@ int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,
 		snprintf(err, errlen, "%s: not a valid record: %s", path, why);
 		return -EINVAL;
 	}
+	ret = read_magn_file(path, &rec, err, errlen);
+	if (ret)
+		return ret;
 	/* as restore: what a simulated chip learned fits no real one */
 	if (rec.simulated) {
 		snprintf(err, errlen, "%s was made on the simulator (source = simulator), not on this chip: not used; run as9888-calibd magn-calibrate on this unit",
@@ -99,6 +141,7 @@ int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,
 		cal->offset_ut[i] = u.offset_ut[i];
 		cal->hal_bias_ut[i] = u.hal_bias_ut[i];
 		memcpy(cal->soft_iron[i], u.soft[i], sizeof(cal->soft_iron[i]));
+		memcpy(cal->rotation[i], u.rotation[i], sizeof(cal->rotation[i]));
 		memcpy(cal->residual[i], u.residual[i], sizeof(cal->residual[i]));
 	}
 	cal->field_ut = m->field_nt / NT_PER_UT;

@@ -59,23 +59,30 @@ void magn_user_split(const struct calib_magn *m,
 		     const struct magn_driver_cal *d, struct magn_user_cal *u)
 {
 	double scale[AS9888_AXES], diag[AS9888_AXES];
-	int i, j;
+	int i, j, k;
 
 	magn_scale_ut(eeprom, scale);
 	for (i = 0; i < AS9888_AXES; i++) {
 		u->bias_ut[i] = m->hard_iron_nt[i] / NT_PER_UT;
 		diag[i] = d->calibscale_micro[i] / MICRO;
+		for (j = 0; j < AS9888_AXES; j++) {
+			u->soft[i][j] = m->soft_iron_micro[i][j] / MICRO;
+			u->rotation[i][j] = m->has_rotation ?
+					    m->rotation_micro[i][j] / MICRO :
+					    i == j;
+		}
 	}
 	for (i = 0; i < AS9888_AXES; i++) {
 		u->hal_bias_ut[i] = 0;
 		u->offset_ut[i] = diag[i] *
 				  (d->calibbias[i] * scale[i] + u->bias_ut[i]);
 		for (j = 0; j < AS9888_AXES; j++) {
-			u->soft[i][j] = m->soft_iron_micro[i][j] / MICRO;
-			u->residual[i][j] = u->soft[i][j] / diag[j];
-			u->hal_bias_ut[i] += u->soft[i][j] *
-					     (m->hard_iron_nt[j] / NT_PER_UT);
+			for (k = 0, u->full[i][j] = 0; k < AS9888_AXES; k++)
+				u->full[i][j] += u->rotation[i][k] * u->soft[k][j];
+			u->residual[i][j] = u->full[i][j] / diag[j];
 		}
+		for (j = 0; j < AS9888_AXES; j++)
+			u->hal_bias_ut[i] += u->full[i][j] * u->bias_ut[j];
 	}
 }
 
@@ -101,5 +108,5 @@ void magn_correct_driver(const struct magn_user_cal *u,
 void magn_correct_raw(const struct magn_user_cal *u,
 		      const double m[AS9888_AXES], double f[AS9888_AXES])
 {
-	magn_affine(u->soft, m, u->bias_ut, f);
+	magn_affine(u->full, m, u->bias_ut, f);
 }

@@ -4,11 +4,12 @@
  * between the driver and userspace (docs/DECISIONS.md, "Magnetometer
  * calibration in the daemon"):
  *
- *   calibrated field  f = W * (m - b)		(W: soft iron, b: hard iron, uT)
+ *   calibrated field  f = Rrot * W * (m - b)	(W: soft iron, b: hard iron, uT,
+ *						 Rrot: the soft iron's turn)
  *   the driver gets   calibbias c = rint(-b / s)	(s: that axis's uT per LSB)
  *                     calibscale D = diag(W)
  *   so its output     y = D * (m + c * s)		(raw * scale, in uT)
- *   userspace adds    f = R * (y - e), R = W * D^-1, e = D * (c * s + b)
+ *   userspace adds    f = R * (y - e), R = Rrot * W * D^-1, e = D * (c * s + b)
  *
  * e is what rounding the bias to whole LSB leaves (at most half an LSB
  * per axis, times D). Pure arithmetic, no files.
@@ -58,16 +59,21 @@ int magn_driver_split(const struct calib_magn *m,
 /**
  * struct magn_user_cal - userspace's part, in doubles
  * @bias_ut:	hard iron b, sensor frame
- * @soft:	soft-iron correction W
- * @residual:	R = W * D^-1: what the driver's diagonal leaves
+ * @soft:	soft-iron correction W (symmetric, as stored)
+ * @rotation:	Rrot, the soft iron's turn (the identity when the record
+ *		has none: a format 2 record)
+ * @full:	Rrot * W: the whole correction of m - b
+ * @residual:	R = Rrot * W * D^-1: what the driver's diagonal leaves
  * @offset_ut:	e = D * (c * s + b): what its whole-LSB bias leaves
- * @hal_bias_ut: W * b: the bias an Android HAL reports with
- *		TYPE_MAGNETIC_FIELD_UNCALIBRATED (uncalibrated = W * m,
+ * @hal_bias_ut: Rrot * W * b: the bias an Android HAL reports with
+ *		TYPE_MAGNETIC_FIELD_UNCALIBRATED (uncalibrated = Rrot * W * m,
  *		uncalibrated - bias = the calibrated field)
  */
 struct magn_user_cal {
 	double bias_ut[AS9888_AXES];
 	double soft[AS9888_AXES][AS9888_AXES];
+	double rotation[AS9888_AXES][AS9888_AXES];
+	double full[AS9888_AXES][AS9888_AXES];
 	double residual[AS9888_AXES][AS9888_AXES];
 	double offset_ut[AS9888_AXES];
 	double hal_bias_ut[AS9888_AXES];
@@ -87,7 +93,7 @@ void magn_affine(const double a[AS9888_AXES][AS9888_AXES],
 		 const double v[AS9888_AXES], const double sub[AS9888_AXES],
 		 double out[AS9888_AXES]);
 
-/* f = W * (m - b): the calibrated field from an uncorrected field @m (uT) */
+/* f = Rrot * W * (m - b): the calibrated field from an uncorrected field @m (uT) */
 void magn_correct_raw(const struct magn_user_cal *u,
 		      const double m[AS9888_AXES], double f[AS9888_AXES]);
 

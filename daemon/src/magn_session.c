@@ -101,8 +101,10 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 	}
 	if (!ret && progress &&
 	    res->fit.turn_deg >= MAGN_SESSION_TURN_NOTE_DEG) {
-		fprintf(progress, "the magnetometer reads the field turned by %.1f deg against the accelerometer (an asymmetric soft iron): not corrected, headings can be off by about as much\n",
-			res->fit.turn_deg);
+		fprintf(progress, "the magnetometer reads the field turned by %.1f deg against the accelerometer (an asymmetric soft iron): %s\n",
+			res->fit.turn_deg, res->fit.turn_trusted ?
+			"the turn is corrected" :
+			"not determined well enough to correct, headings can be off by about as much");
 		fflush(progress);
 	}
 	res->coverage = magcal_progress(fit);
@@ -170,6 +172,13 @@ int magn_session_to_record(const struct magcal_result *fit, int64_t now,
 	m->coverage_milli = (int32_t)lrint(fit->coverage * 1000);
 	m->samples = fit->used;
 	m->learned = now;
+	/* the soft iron's turn: the identity unless magcal trusts it */
+	m->has_rotation = true;
+	for (i = 0; i < AS9888_AXES; i++)
+		for (j = 0; j < AS9888_AXES; j++)
+			m->rotation_micro[i][j] = fit->turn_trusted ?
+				(int32_t)lrint(fit->rot[i][j] * MICRO) :
+				(i == j) * (int32_t)MICRO;
 
 	return record_magn_validate(m, err, errlen) ? -ERANGE : 0;
 }

@@ -59,8 +59,16 @@ void magn_show_text(FILE *out, const struct calib_record *rec)
 	print_vec(out, "hard iron b [uT]", 3, u.bias_ut);
 	for (i = 0; i < AS9888_AXES; i++)
 		fprintf(out, "  %s %9.6f %9.6f %9.6f\n",
-			i ? "                         " : "soft iron W (f = W(m-b))",
+			i ? "                         " : "soft iron W",
 			u.soft[i][0], u.soft[i][1], u.soft[i][2]);
+	for (i = 0; i < AS9888_AXES; i++)
+		fprintf(out, "  %s %9.6f %9.6f %9.6f\n",
+			i ? "                         " : "turn Rrot",
+			u.rotation[i][0], u.rotation[i][1], u.rotation[i][2]);
+	for (i = 0; i < AS9888_AXES; i++)
+		fprintf(out, "  %s %9.6f %9.6f %9.6f\n",
+			i ? "                         " : "Rrot W (f = Rrot W(m-b))",
+			u.full[i][0], u.full[i][1], u.full[i][2]);
 	fprintf(out, "  driver calibbias [LSB]    %9d %9d %9d\n",
 		d.calibbias[0], d.calibbias[1], d.calibbias[2]);
 	fprintf(out, "  driver calibscale         %9.6f %9.6f %9.6f\n",
@@ -71,7 +79,7 @@ void magn_show_text(FILE *out, const struct calib_record *rec)
 			i ? "                         " : "residual R (f = R(y-e))",
 			u.residual[i][0], u.residual[i][1], u.residual[i][2]);
 	print_vec(out, "offset e [uT]", 4, u.offset_ut);
-	print_vec(out, "HAL bias W*b [uT]", 3, u.hal_bias_ut);
+	print_vec(out, "HAL bias Rrot W b [uT]", 3, u.hal_bias_ut);
 }
 
 static void json_matrix(FILE *out, const double a[AS9888_AXES][AS9888_AXES])
@@ -105,6 +113,10 @@ void magn_show_json(FILE *out, const struct calib_record *rec, int indent)
 	fprintf(out, "%*s\"hard_iron\": [%.3f, %.3f, %.3f],\n%*s\"soft_iron\": ", in,
 		"", u.bias_ut[0], u.bias_ut[1], u.bias_ut[2], in, "");
 	json_matrix(out, u.soft);
+	fprintf(out, ",\n%*s\"rotation\": ", in, "");
+	json_matrix(out, u.rotation);
+	fprintf(out, ",\n%*s\"correction\": ", in, "");
+	json_matrix(out, u.full);
 	fprintf(out, ",\n%*s\"calibbias\": [%d, %d, %d], \"calibscale\": [%.6f, %.6f, %.6f],\n%*s\"residual_matrix\": ",
 		in, "", d.calibbias[0], d.calibbias[1], d.calibbias[2],
 		d.calibscale_micro[0] / MICRO, d.calibscale_micro[1] / MICRO,

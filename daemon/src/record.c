@@ -9,6 +9,7 @@
  */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -44,6 +45,7 @@ enum record_key {
 	KEY_MAGN_COVERAGE,
 	KEY_MAGN_SAMPLES,
 	KEY_MAGN_LEARNED,
+	KEY_MAGN_ROTATION,	/* <record>.magn only */
 	KEY_CRC32,
 	KEY_COUNT,
 };
@@ -67,6 +69,7 @@ static const char *const key_names[KEY_COUNT] = {
 	[KEY_MAGN_COVERAGE] = "magn_coverage",
 	[KEY_MAGN_SAMPLES] = "magn_samples",
 	[KEY_MAGN_LEARNED] = "magn_learned",
+	[KEY_MAGN_ROTATION] = "magn_rotation",
 	[KEY_CRC32] = "crc32",
 };
 
@@ -121,6 +124,40 @@ static int fail(char *err, size_t errlen, const char *fmt, ...)
 	return -EINVAL;
 }
 
+/* Rrot: orthonormal (R R^T = I, det 1) and a turn of at most 5 degrees */
+static int rotation_validate(const int32_t r[AS9888_AXES][AS9888_AXES],
+			     char *err, size_t errlen)
+{
+	double det, trace = 0;
+	int i, j, k;
+
+	for (i = 0; i < AS9888_AXES; i++) {
+		trace += r[i][i] / (double)MICRO;
+		for (j = 0; j < AS9888_AXES; j++) {
+			double dot = 0;
+
+			for (k = 0; k < AS9888_AXES; k++)
+				dot += (double)r[i][k] * r[j][k] /
+				       ((double)MICRO * MICRO);
+			if (fabs(dot - (i == j)) > RECORD_MAGN_ROT_TOLERANCE)
+				return fail(err, errlen, "magn_rotation is not a rotation (rows %d and %d)",
+					    i, j);
+		}
+	}
+	det = ((double)r[0][0] * ((double)r[1][1] * r[2][2] - (double)r[1][2] * r[2][1]) -
+	       (double)r[0][1] * ((double)r[1][0] * r[2][2] - (double)r[1][2] * r[2][0]) +
+	       (double)r[0][2] * ((double)r[1][0] * r[2][1] - (double)r[1][1] * r[2][0])) /
+	      ((double)MICRO * MICRO * MICRO);
+	if (det < 0)
+		return fail(err, errlen, "magn_rotation is a reflection, not a rotation");
+	if (trace < 1 + 2 * cos(RECORD_MAGN_ROT_MAX_DEG * M_PI / 180) -
+		     RECORD_MAGN_ROT_TOLERANCE)
+		return fail(err, errlen, "magn_rotation turns by more than %d degrees",
+			    RECORD_MAGN_ROT_MAX_DEG);
+
+	return 0;
+}
+
 int record_magn_validate(const struct calib_magn *m, char *err, size_t errlen)
 {
 	int i, j;
@@ -164,7 +201,8 @@ int record_magn_validate(const struct calib_magn *m, char *err, size_t errlen)
 	if (m->learned < 0)
 		return fail(err, errlen, "magnetometer calibration time is before 1970");
 
-	return 0;
+	return m->has_rotation ? rotation_validate(m->rotation_micro, err, errlen) :
+				 0;
 }
 
 int record_validate(const struct calib_record *rec, char *err, size_t errlen)
@@ -263,8 +301,8 @@ static int append(char *buf, size_t size, size_t len, const char *fmt, ...)
 }
 
 /* The magnetometer section of format 2, appended at @len */
-static int format_magn(const struct calib_magn *m, char *buf, size_t size,
-		       size_t len)
+static int format_magn(const struct calib_magn *m, bool rotation, char *buf,
+		       size_t size, size_t len)
 {
 	char v[AS9888_AXES * AS9888_AXES][32], learned[32];
 	int i, n;
@@ -283,6 +321,15 @@ static int format_magn(const struct calib_magn *m, char *buf, size_t size,
 	n = append(buf, size, (size_t)n,
 		   "magn_soft_iron = %s %s %s %s %s %s %s %s %s\n",
 		   v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
+	for (i = 0; rotation && n >= 0 && i < AS9888_AXES * AS9888_AXES; i++)
+		print_fixed(v[i], sizeof(v[i]),
+			    m->has_rotation ?
+			    m->rotation_micro[i / AS9888_AXES][i % AS9888_AXES] :
+			    (i % (AS9888_AXES + 1) ? 0 : MICRO), MICRO, 6);
+	if (rotation && n >= 0)
+		n = append(buf, size, (size_t)n,
+			   "magn_rotation = %s %s %s %s %s %s %s %s %s\n",
+			   v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
 	if (n < 0)
 		return n;
 	print_fixed(v[0], sizeof(v[0]), m->field_nt, MILLI, 3);
@@ -348,7 +395,7 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 		len += (size_t)n;
 	}
 	if (rec->magn.present) {
-		n = format_magn(&rec->magn, buf, size, len);
+		n = format_magn(&rec->magn, false, buf, size, len);
 		if (n < 0)
 			return n;
 		len = (size_t)n;
@@ -360,6 +407,37 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 		return -ENOSPC;
 
 	return (int)(len + (size_t)n);
+}
+
+/* The crc32 line over @buf's @len bytes appended: the total length or -ENOSPC */
+static int seal(char *buf, size_t size, size_t len)
+{
+	return append(buf, size, len, "crc32 = %08x\n", record_crc32(buf, len));
+}
+
+int record_magn_format(const struct calib_magn *m,
+		       const uint8_t eeprom[AS9888_EEPROM_LEN], int64_t created,
+		       char *buf, size_t size)
+{
+	char when[32];
+	int n;
+
+	if (format_time(created, when, sizeof(when)))
+		return -EINVAL;
+	n = append(buf, size, 0,
+		   "# AS9888 magnetometer calibration, written by as9888-calibd.\n"
+		   "# Do not edit: the crc32 line covers every byte above it.\n"
+		   "%s"
+		   "format = %s %d\n"
+		   "chip = %016llx\n"
+		   "created = %s\n",
+		   m->present ? "" : "# None (what rollback restores after the first one).\n",
+		   RECORD_MAGN_FILE_NAME, RECORD_MAGN_FILE_VERSION,
+		   (unsigned long long)record_fingerprint(eeprom), when);
+	if (n >= 0 && m->present)
+		n = format_magn(m, true, buf, size, (size_t)n);
+
+	return n < 0 ? n : seal(buf, size, (size_t)n);
 }
 
 /* A cursor over one value: whitespace-separated tokens */
@@ -575,9 +653,10 @@ static bool parse_magn_value(enum record_key key, struct cursor *c,
 }
 
 static bool parse_value(enum record_key key, struct cursor *c,
-			struct calib_record *rec, uint64_t *chip,
-			int64_t *version)
+			struct calib_record *rec, bool magn_file,
+			uint64_t *chip, int64_t *version)
 {
+	const char *name = magn_file ? RECORD_MAGN_FILE_NAME : RECORD_FORMAT_NAME;
 	const char *tok;
 	int64_t v;
 	size_t len;
@@ -587,12 +666,17 @@ static bool parse_value(enum record_key key, struct cursor *c,
 		return parse_magn_value(key, c, &rec->magn);
 	switch (key) {
 	case KEY_FORMAT:
-		if (!next_token(c, &tok, &len) ||
-		    len != strlen(RECORD_FORMAT_NAME) ||
-		    memcmp(tok, RECORD_FORMAT_NAME, len))
+		if (!next_token(c, &tok, &len) || len != strlen(name) ||
+		    memcmp(tok, name, len))
 			return false;
-		return parse_fixed(c, 0, RECORD_FORMAT_VERSION,
+		return magn_file ?
+		       parse_fixed(c, 0, RECORD_MAGN_FILE_VERSION,
+				   RECORD_MAGN_FILE_VERSION, version) :
+		       parse_fixed(c, 0, RECORD_FORMAT_VERSION,
 				   RECORD_FORMAT_MAGN, version);
+	case KEY_MAGN_ROTATION:
+		return parse_fixed_n(c, AS9888_AXES * AS9888_AXES, 6, -MICRO,
+				     MICRO, &rec->magn.rotation_micro[0][0]);
 	case KEY_CHIP:
 		return parse_hex_u64(c, 16, chip);
 	case KEY_CREATED:
@@ -660,17 +744,30 @@ static const char *const value_help[KEY_COUNT] = {
 	[KEY_MAGN_COVERAGE] = "a number with 3 decimals within 0..1",
 	[KEY_MAGN_SAMPLES] = "an integer 10..1000000",
 	[KEY_MAGN_LEARNED] = "YYYY-MM-DDTHH:MM:SSZ",
+	[KEY_MAGN_ROTATION] = "9 numbers with 6 decimals within +-1",
 	[KEY_CRC32] = "8 hex digits",
 };
 
-int record_parse(const char *text, size_t len, struct calib_record *rec,
-		 char *err, size_t errlen)
+/* The keys a file may hold: the record's, or <record>.magn's */
+static bool key_allowed(enum record_key key, bool magn_file)
 {
-	bool seen[KEY_COUNT] = { false };
+	if (!magn_file)
+		return key != KEY_MAGN_ROTATION;
+	return key == KEY_FORMAT || key == KEY_CHIP || key == KEY_CREATED ||
+	       key == KEY_CRC32 || key == KEY_MAGN_ROTATION || is_magn_key(key);
+}
+
+/*
+ * Every line of @text: each key once, allowed in this kind of file, its
+ * value valid, nothing after the checksum, the checksum right. The keys
+ * seen into @seen.
+ */
+static int parse_lines(const char *text, size_t len, bool magn_file,
+		       struct calib_record *rec, uint64_t *chip,
+		       int64_t *version, bool seen[KEY_COUNT], char *err,
+		       size_t errlen)
+{
 	const char *line = text, *end = text + len;
-	uint64_t chip = 0;
-	int64_t version = 0;
-	bool magn_seen = false;
 	uint32_t crc;
 	int lineno = 0, k;
 
@@ -711,7 +808,8 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
 		key_len = (size_t)(key_end - line);
 		for (k = 0; k < KEY_COUNT; k++)
 			if (strlen(key_names[k]) == key_len &&
-			    !memcmp(key_names[k], line, key_len))
+			    !memcmp(key_names[k], line, key_len) &&
+			    key_allowed((enum record_key)k, magn_file))
 				break;
 		if (k == KEY_COUNT)
 			return fail(err, errlen, "line %d: unknown key \"%.*s\"",
@@ -732,22 +830,42 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
 					    lineno, value_help[key]);
 			crc = (uint32_t)value;
 			if (crc != record_crc32(text, (size_t)(line - text)))
-				return fail(err, errlen, "line %d: checksum mismatch: the record is corrupt",
-					    lineno);
-		} else if (!parse_value(key, &c, rec, &chip, &version) ||
+				return fail(err, errlen, "line %d: checksum mismatch: the %s is corrupt",
+					    lineno, magn_file ? "file" : "record");
+		} else if (!parse_value(key, &c, rec, magn_file, chip, version) ||
 			   !at_end(&c)) {
 			return fail(err, errlen, "line %d: %s must be %s", lineno,
-				    key_names[key], value_help[key]);
+				    key_names[key], magn_file && key == KEY_FORMAT ?
+				    "\"" RECORD_MAGN_FILE_NAME " 1\"" :
+				    value_help[key]);
 		}
 		line = nl + 1;
 	}
+
+	return 0;
+}
+
+int record_parse(const char *text, size_t len, struct calib_record *rec,
+		 char *err, size_t errlen)
+{
+	bool seen[KEY_COUNT] = { false };
+	uint64_t chip = 0;
+	int64_t version = 0;
+	bool magn_seen = false;
+	int k, ret;
+
+	ret = parse_lines(text, len, false, rec, &chip, &version, seen, err,
+			  errlen);
+	if (ret)
+		return ret;
 
 	for (k = 0; k < KEY_COUNT; k++) {
 		if (is_magn_key(k)) {
 			magn_seen |= seen[k];
 			continue;
 		}
-		if (!seen[k] && k != KEY_SOURCE)	/* optional: older records */
+		if (!seen[k] && k != KEY_SOURCE &&	/* optional: older records */
+		    k != KEY_MAGN_ROTATION)		/* never in the record */
 			return fail(err, errlen, "%s is missing%s", key_names[k],
 				    k == KEY_CRC32 ? " (truncated record?)" : "");
 	}
@@ -767,6 +885,39 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
 			    (unsigned long long)record_fingerprint(rec->eeprom));
 
 	return record_validate(rec, err, errlen);
+}
+
+int record_magn_parse(const char *text, size_t len, struct calib_magn *m,
+		      uint64_t *chip, char *err, size_t errlen)
+{
+	bool seen[KEY_COUNT] = { false };
+	struct calib_record rec;
+	int64_t version = 0;
+	int k, n = 0, ret;
+
+	ret = parse_lines(text, len, true, &rec, chip, &version, seen, err,
+			  errlen);
+	if (ret)
+		return ret;
+	for (k = 0; k < KEY_COUNT; k++)
+		if ((k == KEY_FORMAT || k == KEY_CHIP || k == KEY_CREATED ||
+		     k == KEY_CRC32) && !seen[k])
+			return fail(err, errlen, "%s is missing%s", key_names[k],
+				    k == KEY_CRC32 ? " (truncated file?)" : "");
+	for (k = KEY_MAGN_HARD_IRON; k <= KEY_MAGN_ROTATION; k++)
+		n += seen[k];
+	/* the whole calibration, or none (what rollback restores) */
+	if (n && n != KEY_MAGN_ROTATION - KEY_MAGN_HARD_IRON + 1) {
+		for (k = KEY_MAGN_HARD_IRON; seen[k]; k++)
+			;
+		return fail(err, errlen, "%s is missing (the file holds part of a calibration)",
+			    key_names[k]);
+	}
+	*m = rec.magn;
+	m->present = n > 0;
+	m->has_rotation = m->present;
+
+	return m->present ? record_magn_validate(m, err, errlen) : 0;
 }
 
 int record_level_offsets(const struct calib_record *rec,

@@ -34,6 +34,22 @@
 #define RECORD_MAGN_RESIDUAL_MAX_NT	20000
 #define RECORD_MAGN_SAMPLES_MIN		10
 #define RECORD_MAGN_SAMPLES_MAX		1000000
+/*
+ * The soft iron's turn (magn_rotation, only in <record>.magn): a rotation
+ * of at most 5 degrees (magcal's largest), orthonormal to within the
+ * rounding of its nine terms to micro units
+ */
+#define RECORD_MAGN_ROT_MAX_DEG		5
+#define RECORD_MAGN_ROT_TOLERANCE	1e-5
+
+/*
+ * The magnetometer's calibration in its own file beside the record
+ * (<record>.magn, daemon/RECORD.md), so that the record stays format 1,
+ * which every build reads
+ */
+#define RECORD_MAGN_FILE_NAME		"as9888-magnetometer"
+#define RECORD_MAGN_FILE_VERSION	1
+#define RECORD_MAGN_SUFFIX		".magn"
 
 /**
  * struct calib_magn - the magnetometer's calibration (format 2)
@@ -46,6 +62,11 @@
  * @coverage_milli: orientation coverage of those samples, 0..1000
  * @samples:	the number of samples the fit used
  * @learned:	when it was learned, seconds since the epoch (UTC)
+ * @has_rotation: @rotation_micro is given (read from or written to
+ *		<record>.magn); without it (a format 2 record's section) the
+ *		rotation is the identity
+ * @rotation_micro: Rrot, the soft iron's turn, row-major, 1e-6 units: the
+ *		calibrated field is Rrot W (m - b)
  */
 struct calib_magn {
 	bool present;
@@ -56,6 +77,8 @@ struct calib_magn {
 	int32_t coverage_milli;
 	uint32_t samples;
 	int64_t learned;
+	bool has_rotation;
+	int32_t rotation_micro[AS9888_AXES][AS9888_AXES];
 };
 
 /**
@@ -113,6 +136,23 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
  */
 int record_magn_validate(const struct calib_magn *magn, char *err,
 			 size_t errlen);
+
+/*
+ * The magnetometer's file <record>.magn: @m (a calibration, or none when
+ * !@m->present) of the chip whose record has @eeprom, written at
+ * @created. Returns the length or -ENOSPC/-EINVAL.
+ */
+int record_magn_format(const struct calib_magn *m,
+		       const uint8_t eeprom[AS9888_EEPROM_LEN], int64_t created,
+		       char *buf, size_t size);
+
+/*
+ * Parse and validate <record>.magn's text: the calibration into @m
+ * (@m->present false for a file that holds none), the chip's fingerprint
+ * into @chip. 0, or -EINVAL with "line N: problem" in @err.
+ */
+int record_magn_parse(const char *text, size_t len, struct calib_magn *m,
+		      uint64_t *chip, char *err, size_t errlen);
 
 /* Ot_L per axis: A + St(t_L) * G, from the record */
 int record_level_offsets(const struct calib_record *rec,

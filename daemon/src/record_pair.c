@@ -32,24 +32,39 @@ static int pair_paths(const char *path, struct pair_paths *p, char *err,
 	return 0;
 }
 
+/* Is @path the magnetometer's file (<record>.magn), not a record? */
+static bool is_magn_file(const char *path)
+{
+	size_t n = strlen(path), s = strlen(RECORD_MAGN_SUFFIX);
+
+	return n > s && !strcmp(path + n - s, RECORD_MAGN_SUFFIX);
+}
+
 /*
  * The journal at @journal into @buf: believed (@trust, NULL when we just
- * wrote it ourselves) and a valid record, or -errno with why in @why
+ * wrote it ourselves) and a valid record (a valid magnetometer file with
+ * @magn), or -errno with why in @why
  */
-static long read_journal(const char *journal, const struct storage_trust *trust,
-			 char *buf, size_t size, char *why, size_t whylen)
+static long read_journal(const char *journal, bool magn,
+			 const struct storage_trust *trust, char *buf,
+			 size_t size, char *why, size_t whylen)
 {
 	struct calib_record rec;
 	char reason[256];
 	struct stat st;
+	uint64_t chip;
 	long len;
+	int bad;
 
 	len = read_file_nofollow_stat(journal, buf, size, &st, why, whylen);
 	if (len < 0)
 		return len;
 	if (trust && storage_trust_file(trust, journal, &st, why, whylen))
 		return -EPERM;
-	if (record_parse(buf, (size_t)len, &rec, reason, sizeof(reason))) {
+	bad = magn ? record_magn_parse(buf, (size_t)len, &rec.magn, &chip,
+				       reason, sizeof(reason)) :
+		     record_parse(buf, (size_t)len, &rec, reason, sizeof(reason));
+	if (bad) {
 		snprintf(why, whylen, "%.256s is not a valid record: %.200s", journal,
 			 reason);
 		return -EINVAL;
@@ -74,10 +89,15 @@ int record_pair_recover(const char *path, const struct storage_trust *trust,
 		return 0;
 
 	/* nothing is renamed or removed on the word of a journal not believed */
-	jlen = read_journal(p.journal, trust, journal, sizeof(journal), why,
-			    sizeof(why));
+	jlen = read_journal(p.journal, is_magn_file(path), trust, journal,
+			    sizeof(journal), why, sizeof(why));
 	clen = jlen < 0 ? jlen :
 	       read_file_nofollow(path, cur, sizeof(cur), why, sizeof(why));
+	/* a file made by the change (<record>.magn's first): not made yet */
+	if (clen == -ENOENT) {
+		*what = RECORD_PAIR_UNDONE;
+		return durable_unlink(p.journal, err, errlen);
+	}
 	if (jlen < 0 || clen < 0) {
 		snprintf(err, errlen, "an interrupted change of %s cannot be finished: %s; nothing changed: move %s aside by hand",
 			 path, why, p.journal);

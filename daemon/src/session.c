@@ -102,34 +102,270 @@ long session_read_record(const char *path, struct calib_record *rec, char *buf)
 	return len;
 }
 
+/* <@path>.magn into @file (PATH_MAX); 0 or -ENAMETOOLONG with why in @err */
+static int magn_file(const char *path, char *file, char *err, size_t errlen)
+{
+	if (snprintf(file, PATH_MAX, "%s%s", path, RECORD_MAGN_SUFFIX) < PATH_MAX)
+		return 0;
+	snprintf(err, errlen, "record path %s is too long", path);
+	return -ENAMETOOLONG;
+}
+
+/*
+ * The magnetometer's file beside the record (<@path>.magn): when it is
+ * there, @rec->magn is what it holds (believed as the record is, valid,
+ * and of the record's chip); else the record's own (a format 2 record's
+ * section, or none). 0 or -errno, said on stderr.
+ */
+static int read_magn_file(const char *path, struct calib_record *rec)
+{
+	char file[PATH_MAX], buf[RECORD_MAX_SIZE], err[SESSION_ERR_LEN];
+	struct calib_magn m;
+	struct stat st;
+	uint64_t chip;
+	long len;
+
+	if (magn_file(path, file, err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: %s\n", err);
+		return -ENAMETOOLONG;
+	}
+	len = read_file_nofollow_stat(file, buf, RECORD_MAX_SIZE, &st, err,
+				      sizeof(err));
+	if (len == -ENOENT)
+		return 0;
+	if (len < 0) {
+		print_with_remedy(err, (int)-len);
+		return (int)len;
+	}
+	if (storage_trust_file(&trust, file, &st, err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: %s\n", err);
+		return -EPERM;
+	}
+	if (record_magn_parse(buf, (size_t)len, &m, &chip, err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: %s: not a valid magnetometer calibration: %s\n",
+			file, err);
+		return -EINVAL;
+	}
+	if (chip != record_fingerprint(rec->eeprom)) {
+		fprintf(stderr, "as9888-calibd: %s belongs to chip %016llx, %s to chip %016llx: remove it, then run magn-calibrate on this unit\n",
+			file, (unsigned long long)chip, path,
+			(unsigned long long)record_fingerprint(rec->eeprom));
+		return -EINVAL;
+	}
+	rec->magn = m;
+
+	return 0;
+}
+
 int session_load_record(const char *path, struct calib_record *rec)
 {
 	char buf[RECORD_MAX_SIZE];
 	long len = session_read_record(path, rec, buf);
 
-	return len < 0 ? (int)len : 0;
+	return len < 0 ? (int)len : read_magn_file(path, rec);
+}
+
+/*
+ * The magnetometer's pair as it was before a change (@had: <record>.magn
+ * existed; @prev_len -ENOENT: no previous one), to put back when the
+ * record's own change fails
+ */
+struct magn_undo {
+	char file[PATH_MAX];
+	bool had;
+	char cur[RECORD_MAX_SIZE];
+	long cur_len;
+	char prev[RECORD_MAX_SIZE];
+	long prev_len;
+};
+
+/*
+ * The magnetometer's file and its previous one: the new (@rec's
+ * calibration) and the one it replaces: <@path>.magn as it is, or, when
+ * there is none yet, what the record before (@old, a format 2 record's
+ * section) held, or none. Nothing is written when there was none and
+ * there is none now. 1 when written (the pair before in @u), 0 when not,
+ * or -errno with why in @err (the pair as record_pair_replace() leaves
+ * it).
+ */
+static int save_magn_file(const char *path, const struct calib_record *rec,
+			  const char *old, size_t old_len, struct magn_undo *u,
+			  char *err, size_t errlen)
+{
+	char cur[RECORD_MAX_SIZE], prev[RECORD_MAX_SIZE + sizeof(RECORD_PAIR_PREVIOUS)];
+	struct calib_record before;
+	long prev_len;
+	int len, ret;
+
+	ret = magn_file(path, u->file, err, errlen);
+	if (ret)
+		return ret;
+	u->cur_len = read_file_nofollow(u->file, u->cur, sizeof(u->cur), err,
+					errlen);
+	u->had = u->cur_len >= 0;
+	if (u->cur_len < 0 && u->cur_len != -ENOENT)
+		return (int)u->cur_len;
+	if (!u->had && !rec->magn.present)
+		return 0;
+	snprintf(prev, sizeof(prev), "%s%s", u->file, RECORD_PAIR_PREVIOUS);
+	u->prev_len = read_file_nofollow(prev, u->prev, sizeof(u->prev), err,
+					 errlen);
+	if (u->prev_len < 0 && u->prev_len != -ENOENT)
+		return (int)u->prev_len;
+	if (u->had) {
+		memcpy(prev, u->cur, (size_t)u->cur_len);
+		prev_len = u->cur_len;
+	} else {
+		if (record_parse(old, old_len, &before, NULL, 0)) {
+			memset(&before, 0, sizeof(before));
+			before.created = rec->created;
+		}
+		prev_len = record_magn_format(&before.magn, rec->eeprom,
+					      before.created, prev, sizeof(prev));
+	}
+	len = record_magn_format(&rec->magn, rec->eeprom, rec->created, cur,
+				 sizeof(cur));
+	if (len < 0 || prev_len < 0) {
+		snprintf(err, errlen, "cannot format the magnetometer calibration: %s",
+			 strerror(len < 0 ? -len : (int)-prev_len));
+		return len < 0 ? len : (int)prev_len;
+	}
+
+	ret = record_pair_replace(u->file, cur, (size_t)len, prev, (size_t)prev_len,
+				  RECORD_MODE, err, errlen);
+
+	return ret ? ret : 1;
+}
+
+/* The magnetometer's pair put back as @u had it; 0 or -errno, why in @err */
+static int undo_magn_file(const struct magn_undo *u, char *err, size_t errlen)
+{
+	char prev[PATH_MAX + sizeof(RECORD_PAIR_PREVIOUS)];
+	int ret;
+
+	snprintf(prev, sizeof(prev), "%s%s", u->file, RECORD_PAIR_PREVIOUS);
+	if (u->had && u->prev_len >= 0)
+		return record_pair_replace(u->file, u->cur, (size_t)u->cur_len,
+					   u->prev, (size_t)u->prev_len,
+					   RECORD_MODE, err, errlen);
+	ret = u->had ? atomic_write_file(u->file, u->cur, (size_t)u->cur_len,
+					 RECORD_MODE, err, errlen) :
+		       durable_unlink(u->file, err, errlen);
+	if (!ret || ret == -ENOENT)
+		ret = durable_unlink(prev, err, errlen);
+
+	return ret == -ENOENT ? 0 : ret;
+}
+
+/*
+ * One magnetometer file of the record at @path read into @buf: believed,
+ * valid and of the chip @eeprom. Its length, or -errno with why in @err
+ * (-ENOENT when there is none)
+ */
+static long read_magn_text(const char *file, const uint8_t *eeprom, char *buf,
+			   char *err, size_t errlen)
+{
+	struct calib_magn m;
+	char why[256];
+	struct stat st;
+	uint64_t chip;
+	long len;
+
+	len = read_file_nofollow_stat(file, buf, RECORD_MAX_SIZE, &st, err,
+				      errlen);
+	if (len < 0)
+		return len;
+	if (storage_trust_file(&trust, file, &st, err, errlen))
+		return -EPERM;
+	if (record_magn_parse(buf, (size_t)len, &m, &chip, why, sizeof(why))) {
+		snprintf(err, errlen, "%s is not a valid magnetometer calibration: %s",
+			 file, why);
+		return -EINVAL;
+	}
+	if (chip != record_fingerprint(eeprom)) {
+		snprintf(err, errlen, "%s belongs to another chip", file);
+		return -EINVAL;
+	}
+
+	return len;
+}
+
+int session_magn_rollback(const char *path, const struct calib_record *rec,
+			  bool swap, char *err, size_t errlen)
+{
+	char file[PATH_MAX], prev[PATH_MAX + sizeof(RECORD_PAIR_PREVIOUS)];
+	char cur_text[RECORD_MAX_SIZE], prev_text[RECORD_MAX_SIZE];
+	long cur_len, prev_len;
+	int ret;
+
+	ret = magn_file(path, file, err, errlen);
+	if (ret)
+		return ret;
+	snprintf(prev, sizeof(prev), "%s%s", file, RECORD_PAIR_PREVIOUS);
+	prev_len = read_magn_text(prev, rec->eeprom, prev_text, err, errlen);
+	cur_len = prev_len < 0 ? prev_len :
+		  read_magn_text(file, rec->eeprom, cur_text, err, errlen);
+	if (prev_len == -ENOENT || cur_len == -ENOENT)
+		return 0;
+	if (cur_len < 0)
+		return (int)cur_len;
+	if (!swap)
+		return 1;
+	ret = record_pair_replace(file, prev_text, (size_t)prev_len, cur_text,
+				  (size_t)cur_len, RECORD_MODE, err, errlen);
+
+	return ret ? ret : 1;
+}
+
+/*
+ * A new record without a previous one (factory-test): a magnetometer
+ * calibration beside it is the one of the record it replaces, removed
+ * with its previous one
+ */
+static int forget_magn_files(const char *path, char *err, size_t errlen)
+{
+	char file[PATH_MAX], prev[PATH_MAX + sizeof(RECORD_PAIR_PREVIOUS)];
+	struct stat st;
+	int ret;
+
+	ret = magn_file(path, file, err, errlen);
+	if (ret)
+		return ret;
+	snprintf(prev, sizeof(prev), "%s%s", file, RECORD_PAIR_PREVIOUS);
+	if (!lstat(file, &st))
+		ret = durable_unlink(file, err, errlen);
+	if ((!ret || ret == -ENOENT) && !lstat(prev, &st))
+		ret = durable_unlink(prev, err, errlen);
+
+	return ret == -ENOENT ? 0 : ret;
 }
 
 /* 9999-12-31T23:59:59Z: the record's "created" has four digits for the year */
 #define LAST_RECORD_TIME	253402300799LL
 
 /*
- * Write @rec (stamped now) to @path crash-safely. With @keep_previous, the
- * record at @path is first saved as <path>.previous, so that a bad
- * recalibration can be rolled back.
+ * Write @rec (stamped now) to @path crash-safely: the accelerometer's
+ * record as format 1 (which every build reads), the magnetometer's
+ * calibration in <path>.magn. With @keep_previous, the record at @path is
+ * first saved as <path>.previous, and <path>.magn as <path>.magn.previous,
+ * so that a bad recalibration can be rolled back: the magnetometer's pair
+ * first, then the record's, each a crash-safe change of its own; when the
+ * record's fails, the magnetometer's is put back as it was.
  */
 int session_save_record(const char *path, struct calib_record *rec,
 			bool keep_previous, char *err, size_t errlen)
 {
 	char buf[RECORD_MAX_SIZE], old[RECORD_MAX_SIZE];
-	long old_len;
-	int len, ret;
-
-	struct calib_record check;
+	struct calib_record check, accel;
+	struct magn_undo undo;
 	char why[256];
+	long old_len;
+	int len, ret, magn;
 
 	rec->created = (int64_t)time(NULL);
-	len = record_format(rec, buf, sizeof(buf));
+	accel = *rec;
+	accel.magn.present = false;
+	len = record_format(&accel, buf, sizeof(buf));
 	if (len < 0) {
 		snprintf(err, errlen, "cannot format the record: %s", strerror(-len));
 		return len;
@@ -145,19 +381,38 @@ int session_save_record(const char *path, struct calib_record *rec,
 	if (ret)
 		return ret;
 
-	if (!keep_previous)
-		return atomic_write_file(path, buf, (size_t)len, RECORD_MODE, err,
-					 errlen);
+	if (!keep_previous) {
+		ret = atomic_write_file(path, buf, (size_t)len, RECORD_MODE, err,
+					errlen);
+		return ret ? ret : forget_magn_files(path, err, errlen);
+	}
 	old_len = read_file_nofollow(path, old, sizeof(old), err, errlen);
 	if (old_len < 0)
 		return (int)old_len;
 
-	return record_pair_replace(path, buf, (size_t)len, old, (size_t)old_len,
-				   RECORD_MODE, err, errlen);
+	magn = save_magn_file(path, rec, old, (size_t)old_len, &undo, err,
+			      errlen);
+	if (magn < 0)
+		return magn;
+	ret = record_pair_replace(path, buf, (size_t)len, old, (size_t)old_len,
+				  RECORD_MODE, err, errlen);
+	/* the record's pair stays the old one: so does the magnetometer's */
+	if (ret && magn && undo_magn_file(&undo, why, sizeof(why))) {
+		size_t n = strlen(err);
+
+		snprintf(err + n, errlen - n, "; %s%s could not be put back (%s): as9888-calibd rollback",
+			 path, RECORD_MAGN_SUFFIX, why);
+	}
+
+	return ret;
 }
 
-/* A change of the record and its previous one that was cut short: finished or undone */
-static int recover(const char *path)
+/*
+ * A change of the record at @path and its previous one that was cut
+ * short (or of the magnetometer's file and its previous one): finished
+ * or undone
+ */
+static int recover_pair(const char *path)
 {
 	enum record_pair_recovery what;
 	char err[SESSION_ERR_LEN];
@@ -174,6 +429,20 @@ static int recover(const char *path)
 			path, path, RECORD_PAIR_PREVIOUS);
 
 	return ret;
+}
+
+/* Both pairs: the record's, then the magnetometer's file's */
+static int recover(const char *path)
+{
+	char file[PATH_MAX], err[SESSION_ERR_LEN];
+	int ret = recover_pair(path);
+
+	if (!ret && magn_file(path, file, err, sizeof(err))) {
+		fprintf(stderr, "as9888-calibd: %s\n", err);
+		ret = -ENAMETOOLONG;
+	}
+
+	return ret ? ret : recover_pair(file);
 }
 
 /*

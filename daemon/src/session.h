@@ -36,6 +36,17 @@ long session_read_record(const char *path, struct calib_record *rec, char *buf);
 int session_save_record(const char *path, struct calib_record *rec,
 			bool keep_previous, char *err, size_t errlen);
 
+/*
+ * Rollback's second half: <@path>.magn and <@path>.magn.previous swapped
+ * (both believed, valid and of @rec's chip), or with !@swap only checked
+ * (before the record's pair is swapped, so that files that cannot be read
+ * stop a rollback before it changes anything). 1 when swapped (or it
+ * can be), 0 when there is no pair to swap, or -errno with why in @err
+ * (nothing changed, or the pair settled as record_pair_replace() says)
+ */
+int session_magn_rollback(const char *path, const struct calib_record *rec,
+			  bool swap, char *err, size_t errlen);
+
 /* Apply @rec to the chip (identity checked first); 0 or -errno, said on stderr */
 int session_apply_record(const struct cli_opts *o, const struct calib_record *rec);
 

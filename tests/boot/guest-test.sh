@@ -7,7 +7,8 @@
 #           (no failed unit, the restore units skipped), then the factory
 #           test runs through the driver and writes the record, and
 #           magn-calibrate, the board turned by the adapter's tumble,
-#           adds the magnetometer's calibration (format 2).
+#           adds the magnetometer's calibration (<record>.magn, the
+#           record left format 1).
 #           The daemon, asked before there is a record, says to run the
 #           factory test and keeps running.
 #  boot     the record exists: the calibration must have been applied by
@@ -193,18 +194,19 @@ factory)
 	echo "48 60 3" >$sim/earth && echo "120 -80 45" >$sim/hard_iron &&
 		echo "1.05 0.03 -0.02 0.03 0.95 0.04 -0.02 0.04 1.02" >$sim/soft_iron &&
 		echo 0.3 >$sim/magn_noise && echo 1 >$sim/tumble
-	check "magn-calibrate through the driver, the board tumbling: a format 2 record" \
+	check "magn-calibrate through the driver, the board tumbling: stored in <record>.magn, the record format 1" \
 		eval 'as9888-calibd magn-calibrate --backend iio --timeout 600 --record "$rec" >/tmp/mc.log 2>&1 &&
-		      grep -qx "format = as9888-calibration 2" "$rec"'
+		      grep -qx "format = as9888-magnetometer 1" "$rec.magn" &&
+		      grep -qx "format = as9888-calibration 1" "$rec"'
 	grep -E "^(samples: |Magnetometer calibrated|  field|the magnetometer reads)" /tmp/mc.log |
 		sed 's/^/BOOTTEST # /'
 	tail -2 /tmp/mc.log | sed 's/^/BOOTTEST # /'
 	check "its samples from both devices' buffers on the data-ready trigger" \
 		grep -q "^samples: both devices' buffers on as9888-dev" /tmp/mc.log
 	echo 0 >$sim/tumble
-	# saved only from a session that stored a format 2 record: the next
+	# saved only from a session that stored a calibration: the next
 	# boots' checks compare with it
-	grep -qx "format = as9888-calibration 2" "$rec" && magn_cal >/root/magn-cal
+	grep -q "^magn_hard_iron = " "$rec.magn" && magn_cal >/root/magn-cal
 	echo "BOOTTEST # the driver's magnetometer calibration: $(cat /root/magn-cal 2>/dev/null)"
 	check "and applied to the driver (calibbias not the defaults)" \
 		eval '[ -s /root/magn-cal ] && ! grep -q "^0 0 0 " /root/magn-cal'
@@ -217,7 +219,7 @@ boot)
 		eval '[ -n "$u" ] && [ "$(mono "$u" ExecMainStatus)" = 0 ] && [ "$(mono "$u" ActiveState)" = active ]'
 	mu=$(restore_unit as9888-magn)
 	echo "BOOTTEST # the magnetometer's restore unit: $mu"
-	check "the magnetometer's calibration (format 2 record) applied at boot" magn_applied
+	check "the magnetometer's calibration (<record>.magn) applied at boot" magn_applied
 	check "by the as9888-magn device's own restore@ (ran, succeeded; sandboxed to its directory)" \
 		eval '[ "$(mono "$mu" ExecMainStatus)" = 0 ] && [ "$(mono "$mu" ActiveState)" = active ] &&
 		      [ "$(systemctl show -P ReadWritePaths "$mu")" = "$(dev as9888-magn)" ]'

@@ -44,7 +44,7 @@ sim=(--sim-clock virtual --unit /dev/null)
 run show --record "$rec"
 check "format 1: show has no magnetometer part" eval '[ $rc -eq 0 ] && ! says Magnetometer out'
 "$here/magn_inject.py" "$rec"
-check "the injected record is format 2" grep -q "^format = as9888-calibration 2$" "$rec"
+check "the injected record is format 2 (an older build's, read as it was)" grep -q "^format = as9888-calibration 2$" "$rec"
 
 run show --record "$rec"
 check "show prints the magnetometer's calibration and the driver's part" eval '[ $rc -eq 0 ] &&
@@ -83,16 +83,23 @@ import json, sys
 d = json.loads(sys.argv[1])
 assert d["field"] == 48.512 and d["samples"] == 300, d' "$out"
 
-# recalibrate (the accelerometer) keeps the magnetometer's section
+# recalibrate (the accelerometer) keeps the magnetometer's calibration,
+# moved to the record's .magn file (issue 40 N6): the record becomes
+# format 1, which every build reads; the format 2 record is the previous
+# one, its section the magnetometer's previous calibration
 grep '^magn_' "$rec" >"$work/magn-before"
 run recalibrate "${sim[@]}" --record "$rec"
-grep '^magn_' "$rec" >"$work/magn-after"
-check "recalibrate keeps the magnetometer's calibration" eval '[ $rc -eq 0 ] &&
+grep '^magn_' "$rec.magn" | grep -v '^magn_rotation' >"$work/magn-after"
+grep '^magn_' "$rec.magn.previous" | grep -v '^magn_rotation' >"$work/magn-previous"
+check "recalibrate keeps the magnetometer's calibration, in <record>.magn, the record format 1" eval '[ $rc -eq 0 ] &&
 	cmp -s "$work/magn-before" "$work/magn-after" &&
-	grep -q "^format = as9888-calibration 2$" "$rec" &&
-	grep -q "^magn_" "$rec.previous"'
+	cmp -s "$work/magn-before" "$work/magn-previous" &&
+	grep -q "^magn_rotation = 1.000000 0.000000 0.000000 0.000000 1.000000 0.000000 0.000000 0.000000 1.000000$" "$rec.magn" &&
+	grep -q "^format = as9888-calibration 1$" "$rec" &&
+	grep -q "^format = as9888-calibration 2$" "$rec.previous"'
 
-# rollback brings a format 1 record back: "magn" says there is none
+# a new factory record: the magnetometer's file of the one before is gone,
+# "magn" says there is none
 "$calibd" factory-test "${sim[@]}" --record "$rec" >/dev/null
 out=$("$calibd" request magn --socket "$sock" 2>&1)
 check "request magn on a format 1 record: exit status 1, says to run magn-calibrate" eval '
@@ -102,7 +109,7 @@ check "request magn on a format 1 record: exit status 1, says to run magn-calibr
 # the field mode, from that format 1 record
 # hard iron within @2 uT of (@3 @4 @5)
 hard_iron_near() {
-	python3 - "$rec" "$@" <<'PY'
+	python3 - "$rec.magn" "$@" <<'PY'
 import sys
 keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines() if " = " in l)
 b = [float(v) for v in keys["magn_hard_iron"].split()]
@@ -114,12 +121,13 @@ PY
 
 "$here/magn_feed.py" "$sock" 49 1 120 -80 45 >"$work/feed" 2>&1
 frc=$?
-check "field mode, 49 samples fed: no fit yet, the record untouched (format 1)" eval '
-	[ $frc -eq 0 ] && grep -q "^format = as9888-calibration 1$" "$rec"'
+check "field mode, 49 samples fed: no fit yet, the record untouched (format 1, no .magn file)" eval '
+	[ $frc -eq 0 ] && grep -q "^format = as9888-calibration 1$" "$rec" && [ ! -e "$rec.magn" ]'
 "$here/magn_feed.py" "$sock" 1 2 120 -80 45 >"$work/feed" 2>&1
 frc=$?
-check "the 50th: a good fit, stored as format 2" eval '[ $frc -eq 0 ] &&
-	grep -q "^fit: ok" "$work/feed" && grep -q "^format = as9888-calibration 2$" "$rec"'
+check "the 50th: a good fit, stored in <record>.magn, the record left format 1 (issue 40 N6)" eval '[ $frc -eq 0 ] &&
+	grep -q "^fit: ok" "$work/feed" && grep -q "^format = as9888-calibration 1$" "$rec" &&
+	grep -q "^format = as9888-magnetometer 1$" "$rec.magn"'
 check "the learned hard iron is the board's, within 1.5 uT" hard_iron_near 1.5 120 -80 45
 check "the rewrite is logged once, naming who fed it, the samples not at all" eval '
 	[ "$(grep -c "field mode: magnetometer calibration refined" "$work/log")" -eq 1 ] &&
@@ -127,15 +135,15 @@ check "the rewrite is logged once, naming who fed it, the samples not at all" ev
 	! grep -q "magn-feed" "$work/log"'
 
 # the board's hard iron moves by 5 uT: within 6 hours nothing is rewritten
-cp "$rec" "$work/first"
+cp "$rec.magn" "$work/first"
 "$here/magn_feed.py" "$sock" 150 3 125 -80 45 >"$work/feed" 2>&1
 frc=$?
 check "a new estimate within 6 hours of the last: the record is not rewritten" \
-	eval '[ $frc -eq 0 ] && cmp -s "$rec" "$work/first"'
+	eval '[ $frc -eq 0 ] && cmp -s "$rec.magn" "$work/first"'
 
 # make the calibration 7 hours old (re-sealed)
 age() {
-	python3 - "$rec" "$1" <<'PY'
+	python3 - "$rec.magn" "$1" <<'PY'
 import sys, time, zlib
 path, hours = sys.argv[1], float(sys.argv[2])
 t = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(time.time() - hours * 3600))
@@ -149,11 +157,11 @@ PY
 # a reboot in between: the samples on the tmpfs are gone
 age 7
 rm -f "$work/run/magn-samples"
-cp "$rec" "$work/aged"
+cp "$rec.magn" "$work/aged"
 "$here/magn_feed.py" "$sock" 100 4 120 -80 45 >"$work/feed" 2>&1
 frc=$?
 check "7 hours old, the same board again (a change below 1 uT): not rewritten" \
-	eval '[ $frc -eq 0 ] && cmp -s "$rec" "$work/aged"'
+	eval '[ $frc -eq 0 ] && cmp -s "$rec.magn" "$work/aged"'
 rm -f "$work/run/magn-samples"
 # 310 samples: the runtime directory keeps at most 300, by direction
 # (magcal's store: a sample within 2 uT of a kept one is not kept, so
@@ -162,9 +170,9 @@ rm -f "$work/run/magn-samples"
 "$here/magn_feed.py" "$sock" 310 5 125 -80 45 >"$work/feed" 2>&1
 frc=$?
 check "7 hours old, the hard iron 5 uT off: rewritten with the new estimate" eval '
-	[ $frc -eq 0 ] && ! cmp -s "$rec" "$work/aged" && hard_iron_near 1.5 125 -80 45'
-check "the calibration it replaced is kept as the previous record" \
-	cmp -s "$rec.previous" "$work/aged"
+	[ $frc -eq 0 ] && ! cmp -s "$rec.magn" "$work/aged" && hard_iron_near 1.5 125 -80 45'
+check "the calibration it replaced is kept as the previous one" \
+	cmp -s "$rec.magn.previous" "$work/aged"
 kept=$(grep -vc "^#" "$work/run/magn-samples")
 echo "# $kept of 310 samples kept in the runtime directory"
 check "the samples stay on the runtime directory, at most 300 (most of 310 random orientations)" \

@@ -19,7 +19,7 @@ export ASAN_OPTIONS=detect_leaks=1
 trap 'rm -rf "$work"' EXIT
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
-tap_plan 24
+tap_plan 25
 TAP_SHOW="$work/err $work/out"
 mkdir -p "$work/sys"
 export AS9888_SYSFS=$work/sys
@@ -44,10 +44,12 @@ run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --record "$rec"
 check "a tumbling board: exit 0, progress shown, stored" eval '[ $rc -eq 0 ] &&
 	says "^coverage .*%, [0-9]* samples kept" out && says "^Stored in" out'
 cp "$work/out" "$work/first.out"
-check "the record is format 2, the factory record kept as previous" eval '
-	grep -q "^format = as9888-calibration 2$" "$rec" && cmp -s "$rec.previous" "$work/factory"'
+check "the record stays format 1, key for key the factory record (what an older build reads), the calibration in its .magn file, the factory record kept as previous" eval '
+	grep -q "^format = as9888-calibration 1$" "$rec" && cmp -s "$rec.previous" "$work/factory" &&
+	grep -q "^format = as9888-magnetometer 1$" "$rec.magn" && ! grep -q magn_ "$rec" &&
+	diff <(grep -v "^created\|^crc32" "$rec") <(grep -v "^created\|^crc32" "$work/factory") >/dev/null'
 check "hard iron within 1 uT and soft iron within 1% of the unit's truth" \
-	python3 - "$rec" <<'PY'
+	python3 - "$rec.magn" <<'PY'
 import sys
 keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines()
             if " = " in l)
@@ -73,12 +75,12 @@ PY
 # the site's field (--earth-field, the WMM's figure) as the calibrated
 # magnitude: the same session, W scaled so the stored field is the
 # reference; the fit's own field and the scale are shown
-cp "$rec" "$work/plain"
+cp "$rec.magn" "$work/plain"
 run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --earth-field 48.5 --record "$rec"
 check "--earth-field 48.5: exit 0, says the scale, stored" eval '[ $rc -eq 0 ] &&
 	says "the site.s field: the fit saw [0-9.]* uT, W scaled by" out && says "^Stored in" out'
 check "--earth-field 48.5: the stored field is 48.5 uT, W the fit's times the scale, the hard iron the same" \
-	python3 - "$work/plain" "$rec" <<'PY'
+	python3 - "$work/plain" "$rec.magn" <<'PY'
 import sys
 def keys(path):
     return dict(l.split(" = ", 1) for l in open(path).read().splitlines()
@@ -93,26 +95,28 @@ assert all(abs(b - a * f1 / f0) < 1e-5 for a, b in zip(w0, w1)), (w0, w1)
 assert plain["magn_hard_iron"] == ref["magn_hard_iron"]
 PY
 cp "$rec" "$work/before"
+cp "$rec.magn" "$work/before.magn"
 cp "$rec.previous" "$work/before.previous"
 for bad in 19.9 70.001 abc -48 "" 48uT; do
 	run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --earth-field "$bad" --record "$rec"
 	check "--earth-field \"$bad\": a usage error, says the range, nothing written" eval '
 		[ $rc -eq 2 ] && says "earth-field takes the site.s field strength in uT, 20..70" err &&
 		! says "Turn the device" out &&
-		cmp -s "$rec" "$work/before" && cmp -s "$rec.previous" "$work/before.previous"'
+		cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn" && cmp -s "$rec.previous" "$work/before.previous"'
 done
 
 # failures leave the record as it was
 cp "$rec" "$work/before"
+cp "$rec.magn" "$work/before.magn"
 run magn-calibrate --sim-clock virtual --unit /dev/null --timeout 20 --record "$rec"
 check "a device lying still: exit 1 after the timeout, says to turn it, record unchanged" eval '
 	[ $rc -eq 1 ] && says "not enough orientations covered" err &&
-	says "record is unchanged" err && cmp -s "$rec" "$work/before"'
+	says "record is unchanged" err && cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn"'
 
 sed 's/^earth = 48/earth = 110/' "$work/board.unit" >"$work/strong.unit"
 run magn-calibrate --sim-clock virtual --unit "$work/strong.unit" --timeout 60 --record "$rec"
 check "a 110 uT field: exit 1, not the Earth's, record unchanged" eval '
-	[ $rc -eq 1 ] && says "is not the Earth" err && cmp -s "$rec" "$work/before"'
+	[ $rc -eq 1 ] && says "is not the Earth" err && cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn"'
 
 # a magnet passing during the session: its samples rejected as outliers
 # and the result still right (on the virtual clock the session is the same
@@ -129,7 +133,7 @@ check "a passing magnet: the stored hard iron is still within 1 uT" \
 import sys
 keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines() if " = " in l)
 b = [float(v) for v in keys["magn_hard_iron"].split()]
-assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b' "$rec"
+assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b' "$rec.magn"
 
 # a weak magnet moving slowly past (17.6 uT peak over 38 s, from the
 # start: a phone's speaker, a laptop's hinge), which a fit absorbs into
@@ -140,21 +144,23 @@ assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b' "$rec"
 cp "$work/board.unit" "$work/slow.unit"
 printf 'disturbance = 10 -12 8 760\n' >>"$work/slow.unit"
 cp "$rec" "$work/before"
+cp "$rec.magn" "$work/before.magn"
 run magn-calibrate --sim-clock virtual --unit "$work/slow.unit" --record "$rec"
 check "a slow weak magnet: said while it lasts, exit 0, the stored hard iron within 1 uT" eval '
 	[ $rc -eq 0 ] && says "^the field is changing" out && python3 -c "
 import sys
 keys = dict(l.split(\" = \", 1) for l in open(sys.argv[1]).read().splitlines() if \" = \" in l)
 b = [float(v) for v in keys[\"magn_hard_iron\"].split()]
-assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b" "$rec"'
+assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b" "$rec.magn"'
 # the same magnet, slower (60 s) and a session of 15 s, which ends while
 # it is there (before: stored 4 uT off): refused, the record unchanged
 sed 's/^disturbance = .*/disturbance = 10 -12 8 1200/' "$work/slow.unit" >"$work/slower.unit"
 cp "$rec" "$work/before"
+cp "$rec.magn" "$work/before.magn"
 run magn-calibrate --sim-clock virtual --unit "$work/slower.unit" --timeout 15 --record "$rec"
 check "a slow magnet through the whole session: exit 1, the field changed, record unchanged" eval '
 	[ $rc -eq 1 ] && says "the field changed during the session" err &&
-	cmp -s "$rec" "$work/before"'
+	cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn"'
 
 # the board's soft iron turned by 2 deg about Z (S' = Rz S: asymmetric,
 # which the record's symmetric W cannot hold): stored, and the turn seen
@@ -163,11 +169,33 @@ sed 's/^soft_iron = .*/soft_iron = 1.048313 -0.003173 -0.021384 0.066626 0.95046
 	"$work/board.unit" >"$work/turned.unit"
 grep -q "turned by" "$work/first.out" && first_turn=1 || first_turn=0
 run magn-calibrate --sim-clock virtual --unit "$work/turned.unit" --record "$rec"
-check "a soft iron turned by 2 deg: stored, the turn of 1.5..2.5 deg said" eval '
-	[ $rc -eq 0 ] && [ $first_turn -eq 0 ] && python3 -c "
-import re, sys
+check "a soft iron turned by 2 deg: stored, the turn of 1.5..2.5 deg said, stored as magn_rotation (issue 39 point 5)" eval '
+	[ $rc -eq 0 ] && [ $first_turn -eq 0 ] && says "turn against the accelerometer .* stored" out &&
+	python3 -c "
+import math, re, sys
 m = re.search(r\"field turned by ([0-9.]+) deg against the accelerometer\", open(sys.argv[1]).read())
-assert m and 1.5 <= float(m.group(1)) <= 2.5, m" "$work/out"'
+assert m and 1.5 <= float(m.group(1)) <= 2.5, m
+keys = dict(l.split(\" = \", 1) for l in open(sys.argv[2]).read().splitlines() if \" = \" in l)
+r = [float(v) for v in keys[\"magn_rotation\"].split()]
+deg = math.degrees(math.acos((r[0] + r[4] + r[8] - 1) / 2))
+print(\"# stored turn %.3f deg\" % deg)
+assert 1.5 <= deg <= 2.5, r" "$work/out" "$rec.magn"'
+
+run show --json --record "$rec"
+check "show of the turned board: its turn, Rrot W and the HAL's bias Rrot W b" python3 - "$work/out" "$rec.magn" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))["magnetometer"]
+keys = dict(l.split(" = ", 1) for l in open(sys.argv[2]).read().splitlines() if " = " in l)
+r = [float(v) for v in keys["magn_rotation"].split()]
+R = [r[0:3], r[3:6], r[6:9]]
+W, b = d["soft_iron"], d["hard_iron"]
+assert all(abs(d["rotation"][i][j] - R[i][j]) < 1e-6 for i in range(3) for j in range(3)), d
+assert abs(R[0][1]) > 0.01, R	# turned about Z: not the identity
+RW = [[sum(R[i][k] * W[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+assert all(abs(d["correction"][i][j] - RW[i][j]) < 1e-6 for i in range(3) for j in range(3)), d
+hal = [sum(RW[i][j] * b[j] for j in range(3)) for i in range(3)]
+assert all(abs(hal[i] - d["hal_bias"][i]) < 1e-5 for i in range(3)), (hal, d)
+PY
 
 # through the driver (a sysfs tree like its own, readings that never
 # change: a device lying still), in real time
@@ -199,9 +227,10 @@ body = "".join(l + "\n" for l in text[:text.index("crc32 = ")].splitlines()
 open(sys.argv[1], "w").write(body + "crc32 = %08x\n" % zlib.crc32(body.encode()))
 PY
 cp "$rec" "$work/before"
+cp "$rec.magn" "$work/before.magn"
 run magn-calibrate --backend iio --timeout 2 --record "$rec"
 check "through the driver, a device lying still: exit 1, not enough orientations, record unchanged" eval '
-	[ $rc -eq 1 ] && says "not enough orientations covered" err && cmp -s "$rec" "$work/before"'
+	[ $rc -eq 1 ] && says "not enough orientations covered" err && cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn"'
 printf '\x01' | dd of="$bus/as9888-eeprom0/nvmem" bs=1 seek=4 conv=notrunc status=none
 run magn-calibrate --backend iio --timeout 2 --record "$rec"
 check "through the driver, another chip: refused before sampling, says to run factory-test" eval '

@@ -58,18 +58,24 @@ run_sim factory-test >/dev/null && run_sim recalibrate --samples 11 >/dev/null |
 cp "$rec" "$work/R"
 cp "$rec.previous" "$work/P"
 files="$rec $rec.new $rec.previous $rec.previous.swap $rec.previous.swap.new $rec.lock ${rec%/*}"
+# the magnetometer's file and its pair (magn-calibrate writes them)
+files="$files $rec.magn $rec.magn.new $rec.magn.previous $rec.magn.previous.swap $rec.magn.previous.swap.new"
 trace_paths=()
 for f in $files; do trace_paths+=(-P "$f"); done
 reset_pair() {
 	cp "$work/R" "$rec"
 	cp "$work/P" "$rec.previous"
-	rm -f "$rec.new" "$rec.previous.swap" "$rec.previous.swap.new"
+	rm -f "$rec.new" "$rec.previous.swap" "$rec.previous.swap.new" "$rec.magn"*
 }
-# is_new FILE: a valid record from the interrupted command (12 samples;
-# magn-calibrate's: with a magnetometer calibration)
+# is_new FILE: a valid record from the interrupted command (12 samples)
 is_new() {
-	{ grep -q '^samples = 12$' "$1" || grep -q '^magn_hard_iron = ' "$1"; } &&
-		"$calibd" show --record "$1" >/dev/null 2>&1
+	grep -q '^samples = 12$' "$1" && "$calibd" show --record "$1" >/dev/null 2>&1
+}
+# magn_is FILE yes|no: <record>.magn FILE holds a calibration (yes), or
+# none or is missing (no)
+magn_is() {
+	if [ "$2" = yes ]; then grep -q '^magn_hard_iron = ' "$1"
+	else [ ! -e "$1" ] || ! grep -q '^magn_hard_iron = ' "$1"; fi
 }
 # magn-calibrate's board: turned through every direction by the model
 printf 'earth = 48 60 3\nhard_iron = 120 -80 45\ntumble = 4\n' >"$work/board.unit"
@@ -82,9 +88,17 @@ pair_state() {
 	rollback)	# old (R,P) -> (P,R); new (P,R) -> (R,P)
 		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
 		same "$rec" "$work/R" && same "$rec.previous" "$work/P" && new=yes ;;
-	recalibrate | magn-calibrate)	# old (R,P) -> (P,R); new (N,R) -> (R,N)
+	recalibrate)	# old (R,P) -> (P,R); new (N,R) -> (R,N)
 		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
 		same "$rec" "$work/R" && is_new "$rec.previous" && new=yes ;;
+	magn-calibrate)	# the record's pair as recalibrate's, N the same
+		# accelerometer's record (format 1); the magnetometer's:
+		# old: none in effect; new (M, none) -> (none, M)
+		same "$rec" "$work/P" && same "$rec.previous" "$work/R" &&
+			magn_is "$rec.magn" no && old=yes
+		same "$rec" "$work/R" && "$calibd" show --record "$rec.previous" >/dev/null 2>&1 &&
+			grep -q '^samples = 11$' "$rec.previous" &&
+			magn_is "$rec.magn" no && magn_is "$rec.magn.previous" yes && new=yes ;;
 	factory-test)	# old (R,P) -> (P,R); new (N,P) -> (P,N)
 		same "$rec" "$work/P" && same "$rec.previous" "$work/R" && old=yes
 		same "$rec" "$work/P" && is_new "$rec.previous" && new=yes ;;
@@ -217,7 +231,8 @@ while read -r cmd action call k inject <&3; do
 		not_ok "$what: failed without saying why"
 		continue
 	fi
-	if [ "$action" != kill ] && [ -e "$rec.new" -o -e "$rec.previous.swap.new" ]; then
+	if [ "$action" != kill ] && [ -e "$rec.new" -o -e "$rec.previous.swap.new" -o \
+	     -e "$rec.magn.new" -o -e "$rec.magn.previous.swap.new" ]; then
 		not_ok "$what: temporary file left behind"
 		continue
 	fi
@@ -225,7 +240,7 @@ while read -r cmd action call k inject <&3; do
 	rc2=$?
 	if [ $rc2 -ne 0 ]; then
 		not_ok "$what: the next rollback fails: $(head -c 300 "$work/stderr2")"
-	elif [ -e "$rec.previous.swap" ]; then
+	elif [ -e "$rec.previous.swap" ] || [ -e "$rec.magn.previous.swap" ]; then
 		not_ok "$what: journal left after the next rollback"
 	elif ! state=$(pair_state "$cmd"); then
 		not_ok "$what: record pair neither the old nor the new one"

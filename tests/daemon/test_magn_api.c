@@ -32,42 +32,58 @@ static const uint8_t example[AS9888_EEPROM_LEN] = {
 
 static char dir[64];
 
-static void write_record_from(const char *name, bool magn, bool simulated,
-			      char *path, size_t size)
+/* The example chip's record, with the magnetometer's calibration (@magn) */
+static void fill_record(struct calib_record *rec, bool magn, bool simulated)
 {
-	struct calib_record rec = {
-		.simulated = simulated,
-		.dac = { 0x0d, 0x8f, 0x8c },
-		.level_mean_q16 = { 0, 0, 256 << 16 },
-		.t_level_mdegc = 25000,
-		.gravity = { 0, 0, -1 },
-		.samples = 16,
-		.created = 1795305600,
-		.magn = {
-			.present = magn,
-			.hard_iron_nt = { -150000, 75500, 12345 },
-			.soft_iron_micro = {
-				{ 1080000, 40000, -50000 },
-				{ 40000, 920000, 25000 },
-				{ -50000, 25000, 1010000 },
-			},
-			.field_nt = 47000, .residual_nt = 500,
-			.coverage_milli = 910, .samples = 280,
-			.learned = 1795392000,
+	static const struct calib_magn cal = {
+		.hard_iron_nt = { -150000, 75500, 12345 },
+		.soft_iron_micro = {
+			{ 1080000, 40000, -50000 },
+			{ 40000, 920000, 25000 },
+			{ -50000, 25000, 1010000 },
 		},
+		.field_nt = 47000, .residual_nt = 500,
+		.coverage_milli = 910, .samples = 280,
+		.learned = 1795392000,
 	};
-	char buf[RECORD_MAX_SIZE];
-	FILE *f;
-	int len;
 
-	memcpy(rec.eeprom, example, sizeof(example));
-	len = record_format(&rec, buf, sizeof(buf));
+	memset(rec, 0, sizeof(*rec));
+	memcpy(rec->eeprom, example, sizeof(example));
+	rec->simulated = simulated;
+	rec->dac[0] = 0x0d;
+	rec->dac[1] = 0x8f;
+	rec->dac[2] = 0x8c;
+	rec->level_mean_q16[2] = 256 << 16;
+	rec->t_level_mdegc = 25000;
+	rec->gravity[2] = -1;
+	rec->samples = 16;
+	rec->created = 1795305600;
+	rec->magn = cal;
+	rec->magn.present = magn;
+}
+
+/* @len bytes of @buf as the file @name of the test's directory, its path in @path */
+static void write_text(const char *name, const char *buf, int len, char *path,
+		       size_t size)
+{
+	FILE *f;
+
 	assert_true(len > 0);
 	snprintf(path, size, "%s/%s", dir, name);
 	f = fopen(path, "w");
 	assert_non_null(f);
 	assert_int_equal(fwrite(buf, 1, (size_t)len, f), (size_t)len);
 	fclose(f);
+}
+
+static void write_record_from(const char *name, bool magn, bool simulated,
+			      char *path, size_t size)
+{
+	struct calib_record rec;
+	char buf[RECORD_MAX_SIZE];
+
+	fill_record(&rec, magn, simulated);
+	write_text(name, buf, record_format(&rec, buf, sizeof(buf)), path, size);
 }
 
 static void write_record(const char *name, bool magn, char *path, size_t size)
@@ -122,6 +138,83 @@ static void loads_and_corrects(void **state)
 			assert_true(fabs(unc - bias[i] - want[i]) < 1e-9);
 		}
 	}
+}
+
+/*
+ * A turned board (issue 39 point 5): the record format 1, the calibration
+ * with its turn Rrot in <record>.magn; the application gets Rrot W (m - b)
+ * and the HAL's uncalibrated field Rrot W m with the bias Rrot W b. A
+ * .magn file of another chip is refused, one of none is no calibration.
+ */
+static void turned_board(void **state)
+{
+	/* 3 deg about (2, -1, 2) / 3, in micro units */
+	static const int32_t rot[3][3] = {
+		{ 999239, -35195, -16836 },
+		{ 34586, 998782, -35195 },
+		{ 18054, 34586, 999239 },
+	};
+	struct as9888_magn_calibration cal;
+	char path[128], file[160], buf[RECORD_MAX_SIZE], err[256];
+	double scale[3], bias[3];
+	struct calib_record rec;
+	int n, i, j, k;
+
+	(void)state;
+	write_record("turned", false, path, sizeof(path));
+	fill_record(&rec, true, false);
+	rec.magn.has_rotation = true;
+	memcpy(rec.magn.rotation_micro, rot, sizeof(rot));
+	write_text("turned.magn", buf,
+		   record_magn_format(&rec.magn, example, rec.created, buf,
+				      sizeof(buf)), file, sizeof(file));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), 0);
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			assert_true(cal.rotation[i][j] == rot[i][j] / 1e6);
+	for (i = 0; i < 3; i++)
+		scale[i] = 0.3 * (example[4 + i] + 128) / 256;
+	as9888_magn_hal_bias(&cal, bias);
+	srand(11);
+	for (n = 0; n < 200; n++) {
+		double m[3], y[3], f[3], wm[3], w[3] = { 0 }, want[3], unc[3];
+
+		for (i = 0; i < 3; i++)
+			m[i] = (rand() / (double)RAND_MAX - 0.5) * 600;
+		for (i = 0; i < 3; i++)
+			y[i] = cal.calibscale[i] * (m[i] + cal.calibbias[i] * scale[i]);
+		as9888_magn_correct(&cal, y, f);
+		for (i = 0; i < 3; i++)
+			for (j = 0, wm[i] = 0, w[i] = 0; j < 3; j++) {
+				w[i] += cal.soft_iron[i][j] * (m[j] - cal.hard_iron_ut[j]);
+				wm[i] += cal.soft_iron[i][j] * m[j];
+			}
+		for (i = 0; i < 3; i++) {
+			for (k = 0, want[i] = 0, unc[i] = 0; k < 3; k++) {
+				want[i] += rec.magn.rotation_micro[i][k] / 1e6 * w[k];
+				unc[i] += rec.magn.rotation_micro[i][k] / 1e6 * wm[k];
+			}
+			assert_true(fabs(f[i] - want[i]) < 1e-9);
+			/* the HAL: Rrot W m - Rrot W b = the calibrated field */
+			assert_true(fabs(unc[i] - bias[i] - want[i]) < 1e-9);
+		}
+		/* the turn is applied: W (m - b) alone is off by about 3 deg */
+		assert_true(fabs(f[0] - w[0]) + fabs(f[1] - w[1]) + fabs(f[2] - w[2]) >
+			    1e-3 * sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
+	}
+	/* the .magn file of another chip: refused, saying so */
+	rec.eeprom[0] ^= 1;
+	write_text("turned.magn", buf,
+		   record_magn_format(&rec.magn, rec.eeprom, rec.created, buf,
+				      sizeof(buf)), file, sizeof(file));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "another chip"));
+	/* a .magn file of none (after a rollback): no calibration */
+	rec.magn.present = false;
+	write_text("turned.magn", buf,
+		   record_magn_format(&rec.magn, example, rec.created, buf,
+				      sizeof(buf)), file, sizeof(file));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -ENODATA);
 }
 
 static void refuses(void **state)
@@ -247,6 +340,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(loads_and_corrects),
+		cmocka_unit_test(turned_board),
 		cmocka_unit_test(refuses),
 		cmocka_unit_test(feeds_the_daemon),
 	};

@@ -135,20 +135,17 @@ static void every_truncation_refused(void **state)
 	assert_non_null(strstr(err, "after the crc32"));
 }
 
-/* Replace @key's line with @line and re-seal with a fresh checksum */
-static int edit(const char *key, const char *line, char *out)
+/* @text with @key's line replaced by @line, re-sealed with a fresh checksum */
+static int edit_text(const char *text, const char *key, const char *line,
+		     char *out)
 {
-	struct calib_record rec;
-	char buf[RECORD_MAX_SIZE], body[RECORD_MAX_SIZE];
-	char *p, *q, *crc;
+	char body[RECORD_MAX_SIZE];
+	const char *p, *q;
+	char *crc;
 	size_t blen;
-	int len;
 
-	sample_record(&rec);
-	len = format(&rec, buf, sizeof(buf));
-	buf[len] = '\0';
 	body[0] = '\0';
-	for (p = buf; *p; p = q + 1) {
+	for (p = text; *p; p = q + 1) {
 		q = strchr(p, '\n');
 		if (!strncmp(p, key, strlen(key)) && p[strlen(key)] == ' ') {
 			if (line)
@@ -161,6 +158,19 @@ static int edit(const char *key, const char *line, char *out)
 	*crc = '\0';
 	blen = strlen(body);
 	return sprintf(out, "%scrc32 = %08x\n", body, record_crc32(body, blen));
+}
+
+/* The sample record with @key's line replaced by @line, re-sealed */
+static int edit(const char *key, const char *line, char *out)
+{
+	struct calib_record rec;
+	char buf[RECORD_MAX_SIZE];
+	int len;
+
+	sample_record(&rec);
+	len = format(&rec, buf, sizeof(buf));
+	buf[len] = '\0';
+	return edit_text(buf, key, line, out);
 }
 
 static void expect_refused(const char *key, const char *line, const char *why)
@@ -368,6 +378,106 @@ static void format2_fields_validated(void **state)
 	assert_int_equal(record_validate(&rec, err, sizeof(err)), 0);
 }
 
+/* The sample calibration with a turn of 2 deg about Z, as <record>.magn holds it */
+static int magn_file_text(struct calib_magn *m, char *buf, size_t size)
+{
+	static const int32_t rz[3][3] = {
+		{ 999391, -34899, 0 }, { 34899, 999391, 0 }, { 0, 0, 1000000 },
+	};
+	int len;
+
+	*m = sample_magn;
+	m->has_rotation = true;
+	memcpy(m->rotation_micro, rz, sizeof(rz));
+	len = record_magn_format(m, example, 1795305600, buf, size);
+	assert_true(len > 0);
+	buf[len] = '\0';
+	return len;
+}
+
+/* @text (a magnetometer file) with @key's line replaced is refused, saying @why */
+static void expect_magn_refused(const char *text, const char *key,
+				const char *line, const char *why)
+{
+	char buf[RECORD_MAX_SIZE], err[256];
+	struct calib_magn back;
+	uint64_t chip;
+	int len = edit_text(text, key, line, buf);
+
+	assert_int_equal(record_magn_parse(buf, (size_t)len, &back, &chip, err,
+					   sizeof(err)), -EINVAL);
+	if (!strstr(err, why))
+		fail_msg("%s: \"%s\" does not say \"%s\"", key, err, why);
+}
+
+/*
+ * <record>.magn (issue 40 N6, issue 39 point 5): written, sealed, read back
+ * whole with its turn; a file of none; every truncation and corruption,
+ * a turn that is no rotation or too large, a key of the record's, part of
+ * a calibration refused; magn_rotation never in a record
+ */
+static void magn_file(void **state)
+{
+	char buf[RECORD_MAX_SIZE], text[RECORD_MAX_SIZE], err[256];
+	struct calib_magn m, back, none = { 0 };
+	uint64_t chip = 0;
+	int len, n;
+
+	(void)state;
+	len = magn_file_text(&m, text, sizeof(text));
+	assert_non_null(strstr(text, "\nformat = as9888-magnetometer 1\n"
+				     "chip = 676f64b435a720ba\n"
+				     "created = 2026-11-22T00:00:00Z\n"
+				     "magn_hard_iron = -123.456 45.000 200.125\n"));
+	assert_non_null(strstr(text, "\nmagn_rotation = 0.999391 -0.034899 0.000000 0.034899 0.999391 0.000000 0.000000 0.000000 1.000000\n"
+				     "magn_field = 48.123\n"));
+	assert_null(strstr(text, "eeprom"));
+	assert_int_equal(record_magn_parse(text, (size_t)len, &back, &chip, err,
+					   sizeof(err)), 0);
+	assert_memory_equal(&m, &back, sizeof(m));
+	assert_true(chip == record_fingerprint(example));
+	/* a file of none: what rollback restores after the first calibration */
+	n = record_magn_format(&none, example, 1795305600, buf, sizeof(buf));
+	assert_true(n > 0);
+	assert_int_equal(record_magn_parse(buf, (size_t)n, &back, &chip, err,
+					   sizeof(err)), 0);
+	assert_false(back.present);
+	/* every truncation, every flipped byte */
+	for (n = 0; n < len; n++)
+		assert_int_equal(record_magn_parse(text, (size_t)n, &back, &chip,
+						   err, sizeof(err)), -EINVAL);
+	for (n = 0; n < len; n++) {
+		memcpy(buf, text, (size_t)len);
+		buf[n] ^= 0x04;
+		assert_int_equal(record_magn_parse(buf, (size_t)len, &back, &chip,
+						   err, sizeof(err)), -EINVAL);
+	}
+	expect_magn_refused(text, "magn_rotation",
+			    "magn_rotation = 0.994522 -0.104528 0.000000 0.104528 0.994522 0.000000 0.000000 0.000000 1.000000",
+			    "more than 5 degrees");
+	expect_magn_refused(text, "magn_rotation",
+			    "magn_rotation = 0.999391 -0.034899 0.000000 0.044899 0.999391 0.000000 0.000000 0.000000 1.000000",
+			    "not a rotation");
+	expect_magn_refused(text, "magn_rotation",
+			    "magn_rotation = 1.000000 0.000000 0.000000 0.000000 1.000000 0.000000 0.000000 0.000000 -1.000000",
+			    "reflection");
+	expect_magn_refused(text, "magn_rotation",
+			    "magn_rotation = 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0",
+			    "magn_rotation must be");
+	expect_magn_refused(text, "magn_rotation", NULL, "magn_rotation is missing");
+	expect_magn_refused(text, "magn_field", NULL, "magn_field is missing");
+	expect_magn_refused(text, "chip", "chip = 676f64b435a720ba\neeprom = 9a",
+			    "unknown key \"eeprom\"");
+	expect_magn_refused(text, "format", "format = as9888-calibration 2",
+			    "format must be");
+	expect_magn_refused(text, "created", NULL, "created is missing");
+	/* a record never holds the turn: an older build would refuse it */
+	with_magn = true;
+	expect_refused("magn_field", "magn_field = 48.123\nmagn_rotation = 1.000000 0.000000 0.000000 0.000000 1.000000 0.000000 0.000000 0.000000 1.000000",
+		       "unknown key \"magn_rotation\"");
+	with_magn = false;
+}
+
 /* A record whose EEPROM data is unusable is refused too */
 static void eeprom_validated(void **state)
 {
@@ -462,6 +572,7 @@ int main(void)
 		cmocka_unit_test(format1_unchanged),
 		cmocka_unit_test(format2_round_trip),
 		cmocka_unit_test(format2_fields_validated),
+		cmocka_unit_test(magn_file),
 		cmocka_unit_test(atomic_write_and_read),
 		cmocka_unit_test(symlinks_refused),
 	};

@@ -19,9 +19,10 @@
  * is fine). The exit status is 1 when a target is missed.
  *
  * The boards whose soft iron turns the field (asymmetric, issue 39
- * point 3) are judged without the turn and with the turn the fit trusts
- * (magcal_result rot: the identity when its uncertainty is above 0.3
- * deg) applied after the residual matrix.
+ * point 3) are judged without the turn and through the stored
+ * calibration's path: the daemon's conversion of the fit with the turn
+ * it trusts (the identity when its uncertainty is above 0.3 deg),
+ * <record>.magn written and read, the driver's and userspace's parts.
  *
  * Usage: bench_magcal_sweep [--full|--turned]   (default: a short sweep;
  * --turned: the turned boards alone)
@@ -38,7 +39,13 @@
 #include <cmocka.h>
 
 #include "magcal.h"
+#include "magn_cal.h"
+#include "magn_session.h"
 #include "magsim.h"
+#include "record.h"
+
+/* when the sweep's calibrations are "stored" (any time: it is not judged) */
+#define STORED_AT		1795392000
 
 /* magn-calibrate's session (daemon/src/magn_session.h) */
 #define INTERVAL_S		0.05
@@ -123,17 +130,37 @@ static void rotate_soft(struct as9888_unit *u, double deg)
 		u->soft_ppm[i] = (s32)lrint(out[i]);
 }
 
-/* @st with the rotation @rot after its R (magcal_result rot: trusted) */
-static void stack_turned(const struct stack *st, const double rot[3][3],
-			 struct stack *out)
+/*
+ * The stack through the stored calibration's path: the daemon's
+ * conversion of the fit (magn_session_to_record(), the turn with it when
+ * trusted), <record>.magn written and read back, split between the
+ * driver and userspace as restore and libas9888magn split it
+ */
+static bool stack_stored(const struct chip *c, const struct magcal_result *r,
+			 struct stack *st)
 {
-	int i, j, l;
+	char text[RECORD_MAX_SIZE], err[256];
+	struct magn_driver_cal d;
+	struct calib_magn m, back;
+	struct magn_user_cal u;
+	uint64_t chip;
+	int len, i;
 
-	*out = *st;
-	for (i = 0; i < 3; i++)
-		for (j = 0; j < 3; j++)
-			for (l = 0, out->resid[i][j] = 0; l < 3; l++)
-				out->resid[i][j] += rot[i][l] * st->resid[l][j];
+	if (magn_session_to_record(r, STORED_AT, &m, err, sizeof(err)))
+		return false;
+	len = record_magn_format(&m, c->ee.raw, STORED_AT, text, sizeof(text));
+	if (len < 0 || record_magn_parse(text, (size_t)len, &back, &chip, err,
+					 sizeof(err)) ||
+	    magn_driver_split(&back, c->ee.raw, &d))
+		return false;
+	magn_user_split(&back, c->ee.raw, &d, &u);
+	for (i = 0; i < 3; i++) {
+		st->calibbias[i] = d.calibbias[i];
+		st->calibscale[i] = d.calibscale_micro[i] / 1e6;
+		st->offset[i] = u.offset_ut[i];
+		memcpy(st->resid[i], u.residual[i], sizeof(st->resid[i]));
+	}
+	return true;
 }
 
 /* Board @b: hard iron 20..400 uT, soft iron 0.9..1.1, cross terms +-0.06 */
@@ -250,9 +277,12 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 		if (rot_deg) {
 			struct stack tst;
 
-			stack_turned(&st, r.rot, &tst);
-			judge(&c, &u, &tst, &tst, sc);
-			out->turned = sc[CORR_SITE];
+			if (stack_stored(&c, &r, &tst)) {
+				judge(&c, &u, &tst, &tst, sc);
+				out->turned = sc[CORR_SITE];
+			} else {
+				out->turned.head_rms = out->turned.head_worst = INFINITY;
+			}
 		}
 	}
 	as9888_sim_free(c.sim);
@@ -283,8 +313,8 @@ static void print_run(unsigned int b, const struct earth *e, double speed,
 
 /*
  * The soft iron turned by 1.5 and 3 deg on each of @boards boards in the
- * field @e at 4 deg per measurement: without the turn, and with the
- * turn trusted applied
+ * field @e at 4 deg per measurement: without the turn, and as stored
+ * (the turn with it when trusted)
  */
 static void turned_report(unsigned int boards, const struct earth *e)
 {
@@ -308,7 +338,7 @@ static void turned_report(unsigned int boards, const struct earth *e)
 			tsq += r.turned.head_rms * r.turned.head_rms;
 			tworst = fmax(tworst, r.turned.head_worst);
 		}
-		printf("soft iron turned by %.1f deg: %u/%u boards learned, turn seen %.2f deg (mean), trusted on %u; without it: heading rms %.2f deg, worst %.2f deg; with the turn trusted applied: heading rms %.2f deg, worst %.2f deg\n",
+		printf("soft iron turned by %.1f deg: %u/%u boards learned, turn seen %.2f deg (mean), trusted on %u; without it: heading rms %.2f deg, worst %.2f deg; as stored (<record>.magn with the turn): heading rms %.2f deg, worst %.2f deg\n",
 		       rot, cnt, boards, cnt ? turn / cnt : 0, trusted,
 		       cnt ? sqrt(sq / cnt) : 0, worst,
 		       cnt ? sqrt(tsq / cnt) : 0, tworst);

@@ -149,6 +149,7 @@ bool stack_from(const struct chip *c, const struct magcal_result *r,
 		    !(diag[i] <= 2))
 			return false;
 		st->calibbias[i] = (int)lrint(bias);
+		st->offset[i] = 0;	/* left to R's rounding, as before */
 		/* IIO_VAL_INT_PLUS_MICRO */
 		st->calibscale[i] = round(diag[i] * 1e6) / 1e6;
 	}
@@ -173,8 +174,9 @@ void corrected(const struct chip *c, const struct stack *st,
 		return;
 	for (i = 0; i < 3; i++)
 		out[i] = k == CORR_DRIVER ? drv[i] :
-			 st->resid[i][0] * drv[0] + st->resid[i][1] * drv[1] +
-			 st->resid[i][2] * drv[2];
+			 st->resid[i][0] * (drv[0] - st->offset[0]) +
+			 st->resid[i][1] * (drv[1] - st->offset[1]) +
+			 st->resid[i][2] * (drv[2] - st->offset[2]);
 }
 
 /* A random orientation whose +Y is within MAX_PITCH_DEG of the horizon */

@@ -52,6 +52,7 @@ struct stack {
 	int calibbias[3];
 	double calibscale[3];
 	double resid[3][3];
+	double offset[3];	/* e: what whole-LSB calibbias leaves, uT */
 };
 
 struct score {

@@ -14,8 +14,8 @@
 #  - raw x scale is then the true field within 0.5 uT (two roundings of
 #    half an LSB divided by S, and the final one) at -20, 25 and 70 degC,
 #    in sysfs and in the buffer; without the calibration it is not;
-#  - the daemon rewrites the record (recalibrate) with the section
-#    unchanged; a new bind starts from the defaults and restore brings the
+#  - the daemon rewrites the record (recalibrate) as format 1, the
+#    section unchanged in <record>.magn (issue 40 N6); a new bind starts from the defaults and restore brings the
 #    values back; a format 1 record restores the defaults;
 #  - magn-calibrate through the driver on the board tumbling two degrees
 #    a measurement stores a calibration, its samples from both devices'
@@ -102,9 +102,9 @@ check "recalibrate rewrites the record" \
 magn_iron on
 tail -n 3 $O/rc.log | sed 's/^/# /'
 check "recalibrate: the record was rewritten (the previous one kept)" test -s $O/rec2.previous
-eq "rewritten record: still format 2" "$(sed -n 's/^format = //p' $O/rec2)" "as9888-calibration 2"
-eq "rewritten record: the magnetometer's section unchanged" \
-	"$(grep '^magn_' $O/rec2)" "$(cat $O/magn-before)"
+eq "rewritten record: format 1, which every build reads" "$(sed -n 's/^format = //p' $O/rec2)" "as9888-calibration 1"
+eq "rewritten record: the magnetometer's calibration unchanged, in its .magn file" \
+	"$(grep '^magn_' $O/rec2.magn | grep -v '^magn_rotation')" "$(cat $O/magn-before)"
 eq "after recalibrate: calibbias still $WB" "$(mg calibbias)" "$WB"
 
 # --- a new bind: the defaults, and restore brings the values back -----------------
