@@ -601,7 +601,8 @@ static struct magcal_result session_turned(double bump_ut, double turn_deg,
 	struct board b = board_a;
 	struct magcal_session *s = magcal_new(NULL);
 	struct magcal_result res;
-	double r[3][3], r0[3][3], spin[3][3], w[3], f[3], up[3], m[3], k, dip;
+	double r[3][3], r0[3][3] = { { 0 } }, spin[3][3], w[3], f[3], up[3], m[3];
+	double k, dip;
 	int n, i, j;
 
 	assert_non_null(s);
