@@ -17,11 +17,26 @@
 #    to its next lower rate: 50 of 100, 10 of 20, 20 of 50 Hz). Event
 #    times strictly increase per sensor and are CLOCK_BOOTTIME's
 #    (current_timestamp_clock): none later than its arrival at the HAL (an
-#    event stamped on another clock is hours, or years, off). The median
-#    arrival beyond 20 ms is logged; beyond 250 ms it fails (a HAL holding
-#    events back with no report latency asked: a watermark above 1, a
-#    queue drained late), as a busy host's wait for the CPU is not that
-#    long for half the events (p99 310 ms, median 1 ms measured);
+#    event stamped on another clock is hours, or years, off). The
+#    issue's "within 20 ms of CLOCK_BOOTTIME", the time from an event's
+#    timestamp to its arrival at the HAL: the median within 20 ms, and
+#    the 99th percentile within 150 ms; a 95th or 99th percentile beyond
+#    20 ms is logged with the late events (when, how late). Not every
+#    event within 20 ms: the guest has one vCPU, a debug kernel (KASAN,
+#    lockdep) under TCG, HZ 250, no preemption on 6.1, and while the
+#    second device starts (its buffer enable, the chip's mode change under
+#    the chip's lock) the running device's samples wait in the kernel:
+#    with the set-up off the reader thread (session 17) up to 5 % of the
+#    events at 100 + 10 Hz came 20-61 ms late, all within the first
+#    0.5 s but one (p95 3 and 19 ms, p99 16 and 55 ms on 6.1 and 7.2 at
+#    load 6-9 on 2 cores; median 1 ms), and a busy host stretches that
+#    kernel work. The HAL this judgment is for, one that sets a device up
+#    on its reader thread, holds the running device's samples for the
+#    whole set-up: p99 346-406 ms at 100 + 10 Hz (median 1 ms: the median
+#    alone cannot see it), so 150 ms fails it with a margin either way; a
+#    median beyond 20 ms is a HAL holding events back (a watermark above
+#    1, a queue drained late), which load does not make (median 3 ms with
+#    the guest at 80 Hz of 100 beside another guest);
 #  - after deactivation both buffers are off and the chip powers down
 #    (runtime suspended, 2 s autosuspend; 30 s is a stall);
 #  - a flush's flush-complete comes after the events before it, within
@@ -77,18 +92,30 @@ increasing() {
 		END { exit (n < 2 || bad) }' "$1"
 }
 # lags FILE: the times from the events' timestamps to the HAL, ms:
-# "FEWEST MEDIAN P99 MOST" ("none" without events)
+# "FEWEST MEDIAN P95 P99 MOST" ("none" without events)
 lags() {
 	awk '$1 == "ev" { print ($5 - $4) / 1e6 }' "$1" | sort -n | awk '{ v[n++] = $1 }
 		END { if (!n) { print "none"; exit }
-		      printf "%.0f %.0f %.0f %.0f\n", v[0], v[int(n / 2)], v[int(n * 0.99)], v[n - 1] }'
+		      printf "%.0f %.0f %.0f %.0f %.0f\n", v[0], v[int(n / 2)], v[int(n * 0.95)],
+			     v[int(n * 0.99)], v[n - 1] }'
 }
-# clock_ok "FEWEST MEDIAN P99 MOST": the timestamps are CLOCK_BOOTTIME's
-# (none after its arrival) and the median arrival within 250 ms; beyond
-# 20 ms is said
+# late FILE: the events that reached the HAL more than 20 ms after their
+# timestamps: "N of M", then up to 12 of them as HANDLE@AT:LAG (AT: ms
+# after the first event's timestamp, LAG: ms)
+late() {
+	awk '$1 == "ev" { if (!n++) f = $4; l = ($5 - $4) / 1e6
+		if (l > 20) { if (k++ < 12) s = s sprintf(" %d@%.0f:%.0f", $2, ($4 - f) / 1e6, l) } }
+		END { printf "%d of %d%s\n", k, n, s }' "$1"
+}
+# clock_ok "FEWEST MEDIAN P95 P99 MOST": the timestamps are
+# CLOCK_BOOTTIME's (none after its arrival), the median arrival within
+# 20 ms and the 99th percentile within 150 ms; a 95th or 99th percentile
+# beyond 20 ms is said
 clock_ok() {
-	[ "$1" != none ] && [ "$1" -ge 0 ] && [ "$2" -le 250 ] || return 1
-	[ "$2" -le 20 ] || diag "median arrival $2 ms: more than 20 ms (a busy host?)"
+	[ "$1" != none ] && [ "$1" -ge 0 ] && [ "$2" -le 20 ] && [ "$4" -le 150 ] || return 1
+	if [ "$3" -gt 20 ] || [ "$4" -gt 20 ]; then
+		diag "arrival p95 $3 ms, p99 $4 ms: beyond 20 ms (the other device's start, a busy host)"
+	fi
 }
 
 # rate_ok FILE HANDLE HZ NAME TAG: the sensor's rate at most 10 % over HZ
@@ -130,8 +157,9 @@ pair() {
 	rate_ok $_f 2 $2 magnetometer "$1+$2"
 	check "$1+$2 Hz: event times strictly increase per sensor" increasing $_f
 	_l=$(lags $_f)
-	diag "AS9888-METRIC hal_lag_ms_$1_$2=$_l (fewest median p99 most)"
-	check "$1+$2 Hz: event times on CLOCK_BOOTTIME: none after its arrival, median within 250 ms (ms: $_l)" \
+	diag "AS9888-METRIC hal_lag_ms_$1_$2=$_l (fewest median p95 p99 most)"
+	diag "beyond 20 ms at $1+$2 Hz: $(late "$_f")"
+	check "$1+$2 Hz: event times on CLOCK_BOOTTIME: none after its arrival, median within 20 ms, p99 within 150 ms (ms: $_l)" \
 		clock_ok $_l
 }
 pair 100 10
