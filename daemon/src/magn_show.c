@@ -58,16 +58,16 @@ void magn_show_text(FILE *out, const struct calib_record *rec)
 	}
 	print_vec(out, "hard iron b [uT]", 3, u.bias_ut);
 	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %s %9.6f %9.6f %9.6f\n",
-			i ? "                         " : "soft iron W",
+		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
+			i ? "" : "soft iron W",
 			u.soft[i][0], u.soft[i][1], u.soft[i][2]);
 	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %s %9.6f %9.6f %9.6f\n",
-			i ? "                         " : "turn Rrot",
+		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
+			i ? "" : "turn Rrot",
 			u.rotation[i][0], u.rotation[i][1], u.rotation[i][2]);
 	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %s %9.6f %9.6f %9.6f\n",
-			i ? "                         " : "Rrot W (f = Rrot W(m-b))",
+		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
+			i ? "" : "Rrot W (f = Rrot W(m-b))",
 			u.full[i][0], u.full[i][1], u.full[i][2]);
 	fprintf(out, "  driver calibbias [LSB]    %9d %9d %9d\n",
 		d.calibbias[0], d.calibbias[1], d.calibbias[2]);
@@ -75,8 +75,8 @@ void magn_show_text(FILE *out, const struct calib_record *rec)
 		d.calibscale_micro[0] / MICRO, d.calibscale_micro[1] / MICRO,
 		d.calibscale_micro[2] / MICRO);
 	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %s %9.6f %9.6f %9.6f\n",
-			i ? "                         " : "residual R (f = R(y-e))",
+		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
+			i ? "" : "residual R (f = R(y-e))",
 			u.residual[i][0], u.residual[i][1], u.residual[i][2]);
 	print_vec(out, "offset e [uT]", 4, u.offset_ut);
 	print_vec(out, "HAL bias Rrot W b [uT]", 3, u.hal_bias_ut);
