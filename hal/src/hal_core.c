@@ -91,7 +91,7 @@ struct as9888_hal {
 	bool record_due;		/* the magnetometer started: read the record */
 	char err[256];
 
-	/* the reader's alone */
+	/* the reader's alone (@prev_ts also reset by a start, under @lock) */
 	struct as9888_event out[OUT_EVENTS];
 	size_t nout;
 	int64_t prev_ts[2];		/* each device's previous sample */
