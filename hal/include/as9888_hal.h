@@ -165,9 +165,13 @@ size_t as9888_hal_sensors(const struct as9888_hal *h,
 			  const struct as9888_sensor_info **list);
 
 /*
- * The framework's calls. 0; -EINVAL for an unknown handle or a bad
- * argument (flush of an inactive sensor too); -EIO (or another -errno) when
- * the driver refused, the reason in as9888_hal_error().
+ * The framework's calls, from any thread but @post's. 0; -EINVAL for an
+ * unknown handle or a bad argument (flush of an inactive sensor too); -EIO
+ * (or another -errno) when the driver refused, the reason in
+ * as9888_hal_error(). activate() and batch() make the sysfs writes that
+ * start, change or stop a device's buffer on the caller's thread and
+ * return when they are done (one call at a time; the other device's events
+ * keep flowing meanwhile); flush() does not block.
  */
 int as9888_hal_activate(struct as9888_hal *h, int handle, bool enable);
 int as9888_hal_batch(struct as9888_hal *h, int handle, int64_t period_ns,
