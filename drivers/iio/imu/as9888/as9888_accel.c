@@ -227,8 +227,8 @@ static int as9888_accel_read_channel(struct as9888_chip *chip,
 		return ret;
 
 	scoped_guard(mutex, &chip->lock) {
-		ret = as9888_measure(chip, AS9888_ACCEL, AS9888_MS_SINGLE,
-				     false, &s, &ts);
+		ret = as9888_gap_measure(chip, AS9888_ACCEL,
+					 AS9888_MS_SINGLE, false, &s, &ts);
 		if (!ret && chan->type == IIO_ACCEL)
 			ret = as9888_accel_out(chip, &s, chan->address, &accel);
 	}

@@ -126,7 +126,7 @@ s32 as9888_mag_adjust_q8(s16 h, u8 ehc)
 }
 EXPORT_SYMBOL_IF_KUNIT(as9888_mag_adjust_q8);
 
-/* Steps 2-7..2-12: -4096 and 4095 (or anything beyond) mean overflow */
+/* Magnetometer overflow (section 5): -4096 and 4095, or anything beyond */
 bool as9888_mag_overflow(s16 h)
 {
 	return h <= AS9888_MAG_MIN || h >= AS9888_MAG_MAX;
@@ -511,7 +511,7 @@ int as9888_accel_compensate(s16 raw, s32 ot_q16, s32 st_q16, s16 *out)
 }
 EXPORT_SYMBOL_IF_KUNIT(as9888_accel_compensate);
 
-/* Steps 3-14..3-19: -2048 and 2047 (or anything beyond) mean saturation */
+/* Accelerometer saturation (section 5): -2048 and 2047, or anything beyond */
 bool as9888_acc_saturated(s16 a)
 {
 	return a <= AS9888_ACC_MIN || a >= AS9888_ACC_MAX;

@@ -330,7 +330,7 @@ static void as9888_test_mag(struct kunit *test)
 	KUNIT_EXPECT_EQ(test, as9888_mag_overflow(c->h), c->overflow);
 }
 
-/* Steps 2-17..2-22: windows on the adjusted value, bounds included */
+/* The self-test windows on the adjusted value, bounds included */
 struct as9888_selftest_case {
 	const char *name;
 	int axis;
@@ -779,7 +779,7 @@ static void as9888_test_dac_opt(struct kunit *test)
 	KUNIT_EXPECT_EQ(test, opt, c->opt);
 }
 
-/* Steps 3-14..3-19: the chip's rails */
+/* Accelerometer saturation (section 5): the output's rails */
 static void as9888_test_acc_saturated(struct kunit *test)
 {
 	KUNIT_EXPECT_TRUE(test, as9888_acc_saturated(AS9888_ACC_MIN));

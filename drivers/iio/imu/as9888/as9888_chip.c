@@ -13,8 +13,8 @@
  * so that a client of one never makes the chip measure the other: the
  * magnetometer is measured only for the magnetometer device. Both devices
  * share this chip state, its lock and the data-ready trigger
- * (as9888_trigger.c); a measurement of their own waits for the gap between
- * two samples of the trigger (as9888_wait_gap()).
+ * (as9888_trigger.c), which decides when the chip is free for a
+ * measurement of their own (as9888_gap_measure()).
  *
  * Probe and power management are in as9888_probe.c.
  */
@@ -30,11 +30,9 @@
 #include <linux/math.h>
 #include <linux/module.h>
 #include <linux/mutex.h>
-#include <linux/pm_runtime.h>
 #include <linux/regmap.h>
 #include <linux/time64.h>
 #include <linux/types.h>
-#include <linux/wait.h>
 
 #include <linux/iio/iio.h>
 
@@ -50,13 +48,6 @@
 #define AS9888_LATE_EDGE_MS		100
 /* ST1 polling interval when no interrupt is wired */
 #define AS9888_POLL_US			100
-/*
- * How long a synchronous measurement waits for the data-ready trigger's
- * gap between two samples: one sample and its handlers, or the trigger's
- * watchdog (1 s) when its edge never comes, and far beyond the latency of
- * a handler on a busy system
- */
-#define AS9888_GAP_WAIT_MS		3000
 
 /* Register map */
 
@@ -373,57 +364,6 @@ int as9888_check_magn(const struct as9888_raw_sample *s)
 	return 0;
 }
 
-/* No sample of the data-ready trigger in flight or in its handlers */
-static bool as9888_trig_idle(struct as9888_chip *chip)
-{
-	return atomic_read(&chip->trig_state) == AS9888_TRIG_IDLE;
-}
-
-/**
- * as9888_wait_gap() - wait for the gap between two samples of the trigger
- * @chip: chip state, with chip->lock held; the lock is dropped while
- *	  waiting
- *
- * A waiter is counted in chip->gap_waiters, and the trigger does not start
- * its next sample while one is counted: the gap is handed over. Without
- * that, a trigger whose next sample is due at once would take the chip
- * back before the woken waiter ever ran. The last waiter to leave has the
- * trigger look at its schedule again (it starts once the lock is free).
- *
- * Return: 0 with chip->lock held and no measurement of the data-ready
- * trigger in flight, or -ETIMEDOUT when the trigger's sample did not come
- * (also with chip->lock held).
- */
-int as9888_wait_gap(struct as9888_chip *chip)
-{
-	unsigned long left;
-	int ret = 0;
-
-	lockdep_assert_held(&chip->lock);
-
-	if (as9888_trig_idle(chip))
-		return 0;
-
-	left = msecs_to_jiffies(AS9888_GAP_WAIT_MS);
-	chip->gap_waiters++;
-	while (!as9888_trig_idle(chip)) {
-		mutex_unlock(&chip->lock);
-		left = wait_event_timeout(chip->gap_wq, as9888_trig_idle(chip),
-					  left);
-		mutex_lock(&chip->lock);
-		if (!left && !as9888_trig_idle(chip)) {
-			dev_err_ratelimited(chip->dev,
-					    "data-ready trigger stalled\n");
-			ret = -ETIMEDOUT;
-			break;
-		}
-	}
-	if (!--chip->gap_waiters)
-		as9888_trig_kick(chip);
-
-	return ret;
-}
-
 /**
  * as9888_measure() - run one measurement and read the sample
  * @chip: chip state
@@ -433,13 +373,13 @@ int as9888_wait_gap(struct as9888_chip *chip)
  * @s: the sample
  * @ts: timestamp of the sample
  *
- * During system sleep nothing is measured. While the data-ready trigger
- * runs for a buffer, wait for the gap between two of its samples first.
- * Then one MS write and one burst read of ST1..ST2 on the bus (plus ST1
- * polls in the unusual case that the sample is late without INT1). On any
- * error the measurement is aborted, leaving the chip in power-down.
+ * With chip->lock held and the chip in power-down (the data-ready
+ * trigger in its gap: as9888_gap_measure()). One MS write and one burst
+ * read of ST1..ST2 on the bus (plus ST1 polls in the unusual case that the
+ * sample is late without INT1). On any error the measurement is aborted,
+ * leaving the chip in power-down.
  *
- * Return: 0, -EBUSY during system sleep, or a negative error number.
+ * Return: 0 or a negative error number.
  */
 int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 		   u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts)
@@ -449,17 +389,6 @@ int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 	int ret;
 
 	lockdep_assert_held(&chip->lock);
-
-	ret = as9888_wait_gap(chip);
-	if (ret)
-		return ret;
-
-	/*
-	 * System sleep: the supplies are, or are about to be, off. Checked
-	 * after the wait, which drops the lock (a halted trigger is idle)
-	 */
-	if (chip->suspended)
-		return -EBUSY;
 
 	ret = as9888_start(chip, mode, men || self_test);
 	if (!ret)
@@ -539,36 +468,4 @@ as9888_get_mount_matrix(const struct iio_dev *indio_dev,
 	const struct as9888_sensor *sensor = iio_priv(indio_dev);
 
 	return &sensor->chip->orientation;
-}
-
-/*
- * Register access for debugging (iio/iio:deviceX/direct_reg_access); it
- * also makes the IIO core create the devices' debugfs directories (the
- * magnetometer's holds selftest_readings). Under chip->lock, like every
- * register access sequence of the driver; a write waits for the gap
- * between two samples of the data-ready trigger, as a trim write does.
- */
-int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
-			      unsigned int writeval, unsigned int *readval)
-{
-	struct as9888_chip *chip = as9888_iio_to_chip(indio_dev);
-	int ret;
-
-	ret = pm_runtime_resume_and_get(chip->dev);
-	if (ret)
-		return ret;
-
-	scoped_guard(mutex, &chip->lock) {
-		if (readval) {
-			ret = regmap_read(chip->regmap, reg, readval);
-		} else {
-			ret = as9888_wait_gap(chip);
-			if (!ret)
-				ret = regmap_write(chip->regmap, reg, writeval);
-		}
-	}
-
-	pm_runtime_put_autosuspend(chip->dev);
-
-	return ret;
 }

@@ -286,14 +286,11 @@ int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 		   u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts);
 int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,
 		      const u8 *val, size_t len);
-int as9888_wait_gap(struct as9888_chip *chip);
 
 /* What both IIO devices share, as9888_chip.c */
 const struct iio_mount_matrix *
 as9888_get_mount_matrix(const struct iio_dev *indio_dev,
 			const struct iio_chan_spec *chan);
-int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
-			      unsigned int writeval, unsigned int *readval);
 
 /* The accelerometer device, as9888_accel.c */
 extern const struct as9888_sensor_desc as9888_accel_desc;
@@ -311,7 +308,12 @@ bool as9888_on_drdy_trigger(struct iio_dev *indio_dev);
 /* These run with chip->lock held */
 int as9888_trig_sample(struct as9888_chip *chip,
 		       const struct as9888_raw_sample **s);
-void as9888_trig_kick(struct as9888_chip *chip);
+int as9888_wait_gap(struct as9888_chip *chip);
+int as9888_gap_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
+		       u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts);
+/* Register access for debugging, in the trigger's gap */
+int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
+			      unsigned int writeval, unsigned int *readval);
 /* Each device's sampling_frequency on the data-ready trigger */
 int as9888_read_samp_freq(struct iio_dev *indio_dev, int *val);
 int as9888_write_samp_freq(struct iio_dev *indio_dev, int freq);

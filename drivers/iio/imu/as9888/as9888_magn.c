@@ -116,8 +116,8 @@ static int as9888_magn_read_channel(struct iio_dev *indio_dev,
 		return ret;
 
 	scoped_guard(mutex, &chip->lock) {
-		ret = as9888_measure(chip, AS9888_MAGN, AS9888_MS_SINGLE, true,
-				     &s, &ts);
+		ret = as9888_gap_measure(chip, AS9888_MAGN, AS9888_MS_SINGLE,
+					 true, &s, &ts);
 		/* HOFL: -ERANGE for every axis, as the chip does not say which */
 		if (!ret)
 			ret = as9888_check_magn(&s);
@@ -343,8 +343,8 @@ static int as9888_run_selftest(struct iio_dev *indio_dev,
 
 	lockdep_assert_held(&chip->lock);
 
-	ret = as9888_measure(chip, AS9888_MAGN, AS9888_MS_SINGLE, true, &s,
-			     &ts);
+	ret = as9888_gap_measure(chip, AS9888_MAGN, AS9888_MS_SINGLE, true,
+				 &s, &ts);
 	if (ret)
 		return ret;
 
@@ -352,8 +352,8 @@ static int as9888_run_selftest(struct iio_dev *indio_dev,
 	for (axis = 0; axis < AS9888_AXES; axis++)
 		pass &= !as9888_mag_overflow((s16)le16_to_cpu(s.magn[axis]));
 
-	ret = as9888_measure(chip, AS9888_MAGN, AS9888_MS_SELF_TEST, true, &s,
-			     &ts);
+	ret = as9888_gap_measure(chip, AS9888_MAGN, AS9888_MS_SELF_TEST,
+				 true, &s, &ts);
 	if (ret)
 		return ret;
 

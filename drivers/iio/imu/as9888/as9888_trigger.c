@@ -3,7 +3,9 @@
  * ALSEN AS9888: the data-ready trigger, shared by the accelerometer and the
  * magnetometer IIO devices, and what both devices share around it: their
  * allocation with a triggered buffer, the buffer set-up, the trigger
- * handler and each device's sampling frequency.
+ * handler, each device's sampling frequency, and the gap between two of
+ * the trigger's samples, in which their own measurements and register
+ * writes run.
  *
  * The chip has no output data rate: the trigger starts each measurement
  * itself, when the next sample of one of its devices is due, and INT1
@@ -28,10 +30,11 @@
  *
  * Everything else that needs the chip in power-down (a _raw read, the
  * self-test, a buffer on another trigger, an offset DAC write) waits for
- * the gap between two samples of the trigger (as9888_wait_gap(), in
- * as9888_chip.c): IDLE. So a client of one sensor neither stops the other
- * sensor's buffer nor has to wait for it to end, and every sample is
- * compensated with the DAC value it was measured with.
+ * the gap between two samples of the trigger (as9888_wait_gap(), and
+ * as9888_gap_measure() for a measurement): IDLE. So a client of one
+ * sensor neither stops the other sensor's buffer nor has to wait for it
+ * to end, and every sample is compensated with the DAC value it was
+ * measured with.
  */
 
 #include <linux/array_size.h>
@@ -72,6 +75,13 @@
  * taken as lost, and a start that failed is tried again after as long
  */
 #define AS9888_TRIG_WD_MS		1000
+/*
+ * How long a synchronous measurement waits for the data-ready trigger's
+ * gap between two samples: one sample and its handlers, or the trigger's
+ * watchdog (1 s) when its edge never comes, and far beyond the latency of
+ * a handler on a busy system
+ */
+#define AS9888_GAP_WAIT_MS		3000
 
 /*
  * Sampling frequencies. A rate is offered when its period leaves room for
@@ -89,6 +99,8 @@
 
 /* The rate each device starts with, Hz */
 #define AS9888_SAMP_FREQ_DEFAULT	100
+
+static void as9888_trig_kick(struct as9888_chip *chip);
 
 static const int as9888_samp_freq_avail[] = {
 	1, 2, 5, 10, 20, 25, 50, 100, 125, 200, 250, 400,
@@ -376,7 +388,7 @@ static int as9888_trig_next(struct as9888_chip *chip)
  * starts it (as9888_trig_next()) once the lock is free. Neither the bus
  * nor a sleep: this is all the reenable op does.
  */
-void as9888_trig_kick(struct as9888_chip *chip)
+static void as9888_trig_kick(struct as9888_chip *chip)
 {
 	ktime_t slot;
 
@@ -384,6 +396,126 @@ void as9888_trig_kick(struct as9888_chip *chip)
 
 	if (as9888_trig_may_start(chip) && !as9888_trig_arm(chip, &slot))
 		queue_work(system_highpri_wq, &chip->trig_work);
+}
+
+/* No sample of the data-ready trigger in flight or in its handlers */
+static bool as9888_trig_idle(struct as9888_chip *chip)
+{
+	return atomic_read(&chip->trig_state) == AS9888_TRIG_IDLE;
+}
+
+/**
+ * as9888_wait_gap() - wait for the gap between two samples of the trigger
+ * @chip: chip state, with chip->lock held; the lock is dropped while
+ *	  waiting
+ *
+ * A waiter is counted in chip->gap_waiters, and the trigger does not start
+ * its next sample while one is counted: the gap is handed over. Without
+ * that, a trigger whose next sample is due at once would take the chip
+ * back before the woken waiter ever ran. The last waiter to leave has the
+ * trigger look at its schedule again (it starts once the lock is free).
+ *
+ * Return: 0 with chip->lock held and no measurement of the data-ready
+ * trigger in flight, or -ETIMEDOUT when the trigger's sample did not come
+ * (also with chip->lock held).
+ */
+int as9888_wait_gap(struct as9888_chip *chip)
+{
+	unsigned long left;
+	int ret = 0;
+
+	lockdep_assert_held(&chip->lock);
+
+	if (as9888_trig_idle(chip))
+		return 0;
+
+	left = msecs_to_jiffies(AS9888_GAP_WAIT_MS);
+	chip->gap_waiters++;
+	while (!as9888_trig_idle(chip)) {
+		mutex_unlock(&chip->lock);
+		left = wait_event_timeout(chip->gap_wq, as9888_trig_idle(chip),
+					  left);
+		mutex_lock(&chip->lock);
+		if (!left && !as9888_trig_idle(chip)) {
+			dev_err_ratelimited(chip->dev,
+					    "data-ready trigger stalled\n");
+			ret = -ETIMEDOUT;
+			break;
+		}
+	}
+	if (!--chip->gap_waiters)
+		as9888_trig_kick(chip);
+
+	return ret;
+}
+
+/**
+ * as9888_gap_measure() - a device's own measurement, in the trigger's gap
+ * @chip: chip state, with chip->lock held; the lock is dropped while
+ *	  waiting for the gap
+ * @id: the device that asks for it
+ * @mode: AS9888_MS_SINGLE or AS9888_MS_SELF_TEST
+ * @men: measure the magnetometer too (always done in self-test)
+ * @s: the sample
+ * @ts: timestamp of the sample
+ *
+ * A _raw read, the self-test and a buffer on another trigger measure
+ * here. While the data-ready trigger runs for a buffer, wait for the gap
+ * between two of its samples (as9888_wait_gap()), then run the
+ * measurement (as9888_measure()). During system sleep nothing is
+ * measured.
+ *
+ * Return: 0, -EBUSY during system sleep, or a negative error number.
+ */
+int as9888_gap_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
+		       u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts)
+{
+	int ret;
+
+	ret = as9888_wait_gap(chip);
+	if (ret)
+		return ret;
+
+	/*
+	 * System sleep: the supplies are, or are about to be, off. Checked
+	 * after the wait, which drops the lock (a halted trigger is idle)
+	 */
+	if (chip->suspended)
+		return -EBUSY;
+
+	return as9888_measure(chip, id, mode, men, s, ts);
+}
+
+/*
+ * Register access for debugging (iio/iio:deviceX/direct_reg_access); it
+ * also makes the IIO core create the devices' debugfs directories (the
+ * magnetometer's holds selftest_readings). Under chip->lock, like every
+ * register access sequence of the driver; a write waits for the gap
+ * between two samples of the data-ready trigger, as a trim write does.
+ */
+int as9888_debugfs_reg_access(struct iio_dev *indio_dev, unsigned int reg,
+			      unsigned int writeval, unsigned int *readval)
+{
+	struct as9888_chip *chip = as9888_iio_to_chip(indio_dev);
+	int ret;
+
+	ret = pm_runtime_resume_and_get(chip->dev);
+	if (ret)
+		return ret;
+
+	scoped_guard(mutex, &chip->lock) {
+		if (readval) {
+			ret = regmap_read(chip->regmap, reg, readval);
+		} else {
+			ret = as9888_wait_gap(chip);
+			if (!ret)
+				ret = regmap_write(chip->regmap, reg, writeval);
+		}
+	}
+
+	pm_runtime_put_autosuspend(chip->dev);
+
+	return ret;
 }
 
 static void as9888_trig_work(struct work_struct *work)
@@ -653,8 +785,9 @@ static irqreturn_t as9888_trigger_handler(int irq, void *p)
 	scoped_guard(mutex, &chip->lock) {
 		if (!as9888_on_drdy_trigger(indio_dev)) {
 			s = &own;
-			ret = as9888_measure(chip, desc->id, AS9888_MS_SINGLE,
-					     desc->men, &own, &ts);
+			ret = as9888_gap_measure(chip, desc->id,
+						 AS9888_MS_SINGLE, desc->men,
+						 &own, &ts);
 		} else if (chip->trig_take & BIT(desc->id)) {
 			ret = as9888_trig_sample(chip, &s);
 		} else {
