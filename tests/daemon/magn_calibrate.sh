@@ -19,7 +19,7 @@ export ASAN_OPTIONS=detect_leaks=1
 trap 'rm -rf "$work"' EXIT
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
-tap_plan 25
+tap_plan 27
 TAP_SHOW="$work/err $work/out"
 mkdir -p "$work/sys"
 export AS9888_SYSFS=$work/sys
@@ -168,6 +168,8 @@ check "a slow magnet through the whole session: exit 1, the field changed, recor
 sed 's/^soft_iron = .*/soft_iron = 1.048313 -0.003173 -0.021384 0.066626 0.950468 0.039278 -0.020000 0.040000 1.020000/' \
 	"$work/board.unit" >"$work/turned.unit"
 grep -q "turned by" "$work/first.out" && first_turn=1 || first_turn=0
+cp "$rec" "$work/before-turned"
+cp "$rec.magn" "$work/before-turned.magn"
 run magn-calibrate --sim-clock virtual --unit "$work/turned.unit" --record "$rec"
 check "a soft iron turned by 2 deg: stored, the turn of 1.5..2.5 deg said, stored as magn_rotation (issue 39 point 5)" eval '
 	[ $rc -eq 0 ] && [ $first_turn -eq 0 ] && says "turn against the accelerometer .* stored" out &&
@@ -196,6 +198,19 @@ assert all(abs(d["correction"][i][j] - RW[i][j]) < 1e-6 for i in range(3) for j 
 hal = [sum(RW[i][j] * b[j] for j in range(3)) for i in range(3)]
 assert all(abs(hal[i] - d["hal_bias"][i]) < 1e-5 for i in range(3)), (hal, d)
 PY
+
+# rollback takes both files one change back and says so; a second one
+# brings the turned board's calibration back
+cp "$rec.magn" "$work/turned.magn"
+run rollback --sim-clock virtual --record "$rec"
+check "rollback: the record and its .magn file as before the last magn-calibrate, both said" eval '
+	[ $rc -eq 0 ] && says "^Rolled back: .*calibration.magn holds the magnetometer" out &&
+	cmp -s "$rec" "$work/before-turned" && cmp -s "$rec.magn" "$work/before-turned.magn" &&
+	cmp -s "$rec.magn.previous" "$work/turned.magn"'
+run rollback --sim-clock virtual --record "$rec"
+check "a second rollback: the turned board's calibration again" eval '
+	[ $rc -eq 0 ] && cmp -s "$rec.magn" "$work/turned.magn" &&
+	cmp -s "$rec.magn.previous" "$work/before-turned.magn"'
 
 # through the driver (a sysfs tree like its own, readings that never
 # change: a device lying still), in real time
