@@ -49,6 +49,12 @@ double magn_field_reference_ut(const struct calib_magn *m)
 	return m->field_nt / 1000.0;
 }
 
+/* Rrot's term @i,@j in micro units: the identity's without a turn */
+static int32_t rotation_micro(const struct calib_magn *m, int i, int j)
+{
+	return m->has_rotation ? m->rotation_micro[i][j] : (i == j) * 1000000;
+}
+
 bool magn_field_should_replace(const struct calib_magn *cur,
 			       const struct calib_magn *next, int64_t now)
 {
@@ -65,6 +71,9 @@ bool magn_field_should_replace(const struct calib_magn *cur,
 		for (j = 0; j < AS9888_AXES; j++)
 			if (abs(next->soft_iron_micro[i][j] -
 				cur->soft_iron_micro[i][j]) >=
+			    MAGN_FIELD_W_STEP_MICRO ||
+			    abs(rotation_micro(next, i, j) -
+				rotation_micro(cur, i, j)) >=
 			    MAGN_FIELD_W_STEP_MICRO)
 				return true;
 	}

@@ -13,7 +13,7 @@
  * MAGN_FIELD_FIT_EVERY new ones the fit library solves them, and the
  * record is rewritten only when the fit is good, it differs meaningfully
  * from the record's calibration (MAGN_FIELD_BIAS_STEP_NT,
- * MAGN_FIELD_W_STEP_MICRO) and the record's calibration is at least
+ * MAGN_FIELD_W_STEP_MICRO, for W and the turn) and the record's calibration is at least
  * MAGN_FIELD_MIN_AGE_S old (docs/DECISIONS.md: the flash wear).
  */
 #ifndef AS9888_MAGN_FIELD_H
@@ -30,7 +30,10 @@
 #define MAGN_FIELD_FIT_EVERY		50
 /* A calibration is replaced at most once per 6 hours: 4 rewrites a day */
 #define MAGN_FIELD_MIN_AGE_S		(6 * 3600)
-/* Meaningful: the hard iron moved by 1 uT on an axis, or W by 0.01 */
+/*
+ * Meaningful: the hard iron moved by 1 uT on an axis, or a term of W or
+ * of the turn Rrot by 0.01 (a turn of about 0.57 deg)
+ */
 #define MAGN_FIELD_BIAS_STEP_NT		1000
 #define MAGN_FIELD_W_STEP_MICRO		10000
 /* The samples file: in $RUNTIME_DIRECTORY, else beside the socket */

@@ -48,6 +48,23 @@ static void replace_rules(void **state)
 	next = magn_example;
 	next.soft_iron_micro[2][0] += MAGN_FIELD_W_STEP_MICRO;
 	assert_true(magn_field_should_replace(&magn_example, &next, old));
+	/*
+	 * the turn (none stored: the identity): 0.5 deg about Z is below the
+	 * step, 0.6 deg is not (sin 0.6 deg = 0.0105); the same turn stored
+	 * as it was is no change
+	 */
+	next = magn_example;
+	next.has_rotation = true;
+	next.rotation_micro[0][0] = next.rotation_micro[1][1] = 999962;
+	next.rotation_micro[2][2] = 1000000;
+	next.rotation_micro[0][1] = -8727;
+	next.rotation_micro[1][0] = 8727;
+	assert_false(magn_field_should_replace(&magn_example, &next, old));
+	next.rotation_micro[0][0] = next.rotation_micro[1][1] = 999945;
+	next.rotation_micro[0][1] = -10472;
+	next.rotation_micro[1][0] = 10472;
+	assert_true(magn_field_should_replace(&magn_example, &next, old));
+	assert_false(magn_field_should_replace(&next, &next, old));
 }
 
 /* A calibration scaled to the site's field is recognised by det(W) != 1 */
