@@ -192,7 +192,8 @@ static int save_magn_file(const char *path, const struct calib_record *rec,
 			  const char *old, size_t old_len, struct magn_undo *u,
 			  char *err, size_t errlen)
 {
-	char cur[RECORD_MAX_SIZE], prev[RECORD_MAX_SIZE + sizeof(RECORD_PAIR_PREVIOUS)];
+	char prev_path[PATH_MAX + sizeof(RECORD_PAIR_PREVIOUS)];
+	char cur[RECORD_MAX_SIZE], prev[RECORD_MAX_SIZE];
 	struct calib_record before;
 	long prev_len;
 	int len, ret;
@@ -207,9 +208,10 @@ static int save_magn_file(const char *path, const struct calib_record *rec,
 		return (int)u->cur_len;
 	if (!u->had && !rec->magn.present)
 		return 0;
-	snprintf(prev, sizeof(prev), "%s%s", u->file, RECORD_PAIR_PREVIOUS);
-	u->prev_len = read_file_nofollow(prev, u->prev, sizeof(u->prev), err,
-					 errlen);
+	snprintf(prev_path, sizeof(prev_path), "%s%s", u->file,
+		 RECORD_PAIR_PREVIOUS);
+	u->prev_len = read_file_nofollow(prev_path, u->prev, sizeof(u->prev),
+					 err, errlen);
 	if (u->prev_len < 0 && u->prev_len != -ENOENT)
 		return (int)u->prev_len;
 	if (u->had) {
