@@ -23,8 +23,8 @@ int cmd_magn_show(const struct cli_opts *o)
 	if (session_load_record(o->record_path, &rec))
 		return EXIT_FAILURE;
 	if (!rec.magn.present) {
-		fprintf(stderr, "as9888-calibd: %s has no magnetometer calibration (a format 1 record): run as9888-calibd magn-calibrate\n",
-			o->record_path);
+		fprintf(stderr, "as9888-calibd: %s has no magnetometer calibration (no %s%s with one, nor a format 2 record): run as9888-calibd magn-calibrate\n",
+			o->record_path, o->record_path, RECORD_MAGN_SUFFIX);
 		return EXIT_FAILURE;
 	}
 	if (o->json) {
