@@ -27,12 +27,12 @@
 #    second device starts (its buffer enable, the chip's mode change under
 #    the chip's lock) the running device's samples wait in the kernel:
 #    with the set-up off the reader thread (session 17) up to 5 % of the
-#    events at 100 + 10 Hz came 20-61 ms late, all within the first
-#    0.5 s but one (p95 3 and 19 ms, p99 16 and 55 ms on 6.1 and 7.2 at
-#    load 6-9 on 2 cores; median 1 ms), and a busy host stretches that
-#    kernel work. The HAL this judgment is for, one that sets a device up
+#    events at 100 + 10 Hz came 20-68 ms late, nearly all while the other
+#    device started or stopped (two runs, both kernels side by side at
+#    load 5-9 on 2 cores: p95 3-19 ms, p99 16-55 ms, median 1 ms), and a
+#    busy host stretches that kernel work. The HAL this judgment is for, one that sets a device up
 #    on its reader thread, holds the running device's samples for the
-#    whole set-up: p99 346-406 ms at 100 + 10 Hz (median 1 ms: the median
+#    whole set-up: p99 293-406 ms at 100 + 10 Hz (median 1 ms: the median
 #    alone cannot see it), so 150 ms fails it with a margin either way; a
 #    median beyond 20 ms is a HAL holding events back (a watermark above
 #    1, a queue drained late), which load does not make (median 3 ms with
