@@ -37,13 +37,22 @@ static void print_vec(FILE *out, const char *label, int decimals,
 		decimals, v[1], decimals, v[2]);
 }
 
+/* A 3x3 matrix under print_vec()'s columns, @label on its first row */
+static void print_mat(FILE *out, const char *label,
+		      const double m[AS9888_AXES][AS9888_AXES])
+{
+	int i;
+
+	for (i = 0; i < AS9888_AXES; i++)
+		print_vec(out, i ? "" : label, 6, m[i]);
+}
+
 void magn_show_text(FILE *out, const struct calib_record *rec)
 {
 	const struct calib_magn *m = &rec->magn;
 	struct magn_driver_cal d;
 	struct magn_user_cal u;
 	char when[32];
-	int i;
 
 	if (!m->present)
 		return;
@@ -57,27 +66,15 @@ void magn_show_text(FILE *out, const struct calib_record *rec)
 		return;
 	}
 	print_vec(out, "hard iron b [uT]", 3, u.bias_ut);
-	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
-			i ? "" : "soft iron W",
-			u.soft[i][0], u.soft[i][1], u.soft[i][2]);
-	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
-			i ? "" : "turn Rrot",
-			u.rotation[i][0], u.rotation[i][1], u.rotation[i][2]);
-	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
-			i ? "" : "Rrot W (f = Rrot W(m-b))",
-			u.full[i][0], u.full[i][1], u.full[i][2]);
+	print_mat(out, "soft iron W", u.soft);
+	print_mat(out, "turn Rrot", u.rotation);
+	print_mat(out, "Rrot W (f = Rrot W(m-b))", u.full);
 	fprintf(out, "  driver calibbias [LSB]    %9d %9d %9d\n",
 		d.calibbias[0], d.calibbias[1], d.calibbias[2]);
 	fprintf(out, "  driver calibscale         %9.6f %9.6f %9.6f\n",
 		d.calibscale_micro[0] / MICRO, d.calibscale_micro[1] / MICRO,
 		d.calibscale_micro[2] / MICRO);
-	for (i = 0; i < AS9888_AXES; i++)
-		fprintf(out, "  %-24s %9.6f %9.6f %9.6f\n",
-			i ? "" : "residual R (f = R(y-e))",
-			u.residual[i][0], u.residual[i][1], u.residual[i][2]);
+	print_mat(out, "residual R (f = R(y-e))", u.residual);
 	print_vec(out, "offset e [uT]", 4, u.offset_ut);
 	print_vec(out, "HAL bias Rrot W b [uT]", 3, u.hal_bias_ut);
 }
