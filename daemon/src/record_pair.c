@@ -77,6 +77,7 @@ int record_pair_recover(const char *path, const struct storage_trust *trust,
 			enum record_pair_recovery *what, char *err, size_t errlen)
 {
 	char journal[RECORD_MAX_SIZE], cur[RECORD_MAX_SIZE], why[512];
+	bool magn = is_magn_file(path);
 	struct pair_paths p;
 	long jlen, clen;
 	int ret;
@@ -89,12 +90,16 @@ int record_pair_recover(const char *path, const struct storage_trust *trust,
 		return 0;
 
 	/* nothing is renamed or removed on the word of a journal not believed */
-	jlen = read_journal(p.journal, is_magn_file(path), trust, journal,
-			    sizeof(journal), why, sizeof(why));
+	jlen = read_journal(p.journal, magn, trust, journal, sizeof(journal),
+			    why, sizeof(why));
 	clen = jlen < 0 ? jlen :
 	       read_file_nofollow(path, cur, sizeof(cur), why, sizeof(why));
-	/* a file made by the change (<record>.magn's first): not made yet */
-	if (clen == -ENOENT) {
+	/*
+	 * <record>.magn's first change (no file before it): not made yet. A
+	 * record's journal holds the only copy of the record it replaces, so
+	 * a record gone beside its journal is left to the operator (below).
+	 */
+	if (magn && clen == -ENOENT) {
 		*what = RECORD_PAIR_UNDONE;
 		return durable_unlink(p.journal, err, errlen);
 	}

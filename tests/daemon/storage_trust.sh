@@ -24,7 +24,7 @@ export ASAN_OPTIONS=detect_leaks=1
 . "$(dirname "$0")/../lib/tap.sh"
 # shellcheck source=../lib/record.sh
 . "$(dirname "$0")/../lib/record.sh"
-tap_plan 24
+tap_plan 25
 TAP_SHOW="$work/err"
 
 state=$work/state
@@ -226,6 +226,15 @@ sed 's/^samples = .*/samples = 99/' "$work/good" >"$journal"
 chown root "$journal"
 check "root's journal that is not a valid record: refused (rollback)" \
 	journal_refused rollback "$journal is not a valid record"
+# a journal holds the only copy of the record it replaced: with the record
+# gone beside it, nothing is removed on its word
+cp "$work/good" "$journal"
+mv "$rec" "$work/rec.aside"
+# shellcheck disable=SC2086
+run rollback $sim --record "$rec" --lock-timeout 5
+check "root's valid journal beside a missing record: refused, the journal and the previous record kept" \
+	eval '[ $rc -eq 1 ] && says "nothing changed: move $journal aside by hand" err && cmp -s "$journal" "$work/good" && cmp -s "$rec.previous" "$work/prev.good"'
+mv "$work/rec.aside" "$rec"
 rm -f "$journal"
 # shellcheck disable=SC2086
 run rollback $sim --record "$rec"
