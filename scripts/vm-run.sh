@@ -374,6 +374,8 @@ pack_initramfs() {
 	cp "$VM_DIR/mod-$k/ko/"*.ko "$root/lib/modules/as9888/"
 	cp "$GUEST/init" "$root/init"
 	cp "$GUEST/lib.sh" "$GUEST/run-all.sh" "$root/tests/"
+	# the record helpers the host's tests use (lib.sh sources them)
+	cp "$AS9888_REPO/tests/lib/record.sh" "$root/tests/record.sh"
 	cp -r "$GUEST/tests" "$root/tests/tests"
 	# AS9888_VM_ONLY="10-probe 90-spi": run only these test files
 	printf '%s\n' "${FILES[@]}" >"$root/tests/only"

@@ -29,6 +29,8 @@ cleanup() { [ -n "$pid" ] && kill "$pid" 2>/dev/null; rm -rf "$work"; }
 trap cleanup EXIT
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
+# shellcheck source=../lib/record.sh
+. "$here/../lib/record.sh"
 tap_plan 19
 TAP_SHOW="$work/err $work/log $work/feed"
 # no driver here: an empty sysfs
@@ -43,7 +45,7 @@ sim=(--sim-clock virtual --unit /dev/null)
 
 run show --record "$rec"
 check "format 1: show has no magnetometer part" eval '[ $rc -eq 0 ] && ! says Magnetometer out'
-"$here/magn_inject.py" "$rec"
+record_add_magn "$rec"
 check "the injected record is format 2 (an older build's, read as it was)" grep -q "^format = as9888-calibration 2$" "$rec"
 
 run show --record "$rec"
@@ -141,18 +143,11 @@ frc=$?
 check "a new estimate within 6 hours of the last: the record is not rewritten" \
 	eval '[ $frc -eq 0 ] && cmp -s "$rec.magn" "$work/first"'
 
-# make the calibration 7 hours old (re-sealed)
+# make the calibration HOURS old (re-sealed)
 age() {
-	python3 - "$rec.magn" "$1" <<'PY'
-import sys, time, zlib
-path, hours = sys.argv[1], float(sys.argv[2])
-t = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(time.time() - hours * 3600))
-text = open(path).read()
-body = text[:text.index("crc32 = ")]
-body = "".join(("magn_learned = %s\n" % t) if l.startswith("magn_learned = ") else l + "\n"
-               for l in body.splitlines())
-open(path, "w").write(body + "crc32 = %08x\n" % zlib.crc32(body.encode()))
-PY
+	local t
+	t=$(date -u -d "@$(($(date +%s) - $1 * 3600))" +%Y-%m-%dT%H:%M:%SZ)
+	sed -i "s/^magn_learned = .*/magn_learned = $t/" "$rec.magn" && record_reseal "$rec.magn"
 }
 # a reboot in between: the samples on the tmpfs are gone
 age 7

@@ -7,6 +7,9 @@ T_FAIL=0
 T_SKIP=0
 SIM=/sys/kernel/debug/as9888_sim
 MODDIR=/lib/modules/as9888
+# record_reseal, record_add_magn: tests/lib/record.sh, shipped by vm-run.sh
+# shellcheck source=tests/lib/record.sh
+. /tests/record.sh
 
 diag() { echo "# $*"; }
 # plan N: the number of checks (ok, not ok, skip) this test file makes, at

@@ -6,8 +6,8 @@
 # The board of lib.sh's magn_board: the true field MAGN_TRUE, hard iron
 # MAGN_HARD, diagonal soft iron S (the chip reads S B + h). Its record is
 # this chip's own (the factory test through the driver, format 1) with a
-# magnetometer section added: b = MAGN_HARD, W = S^-1 (format 2, its
-# crc32 recomputed: busybox crc32 is zlib's CRC-32, as the record's).
+# magnetometer section added: b = MAGN_HARD, W = S^-1 (format 2, by
+# tests/lib/record.sh's record_add_magn, as the host's tests add one).
 #  - restore --backend iio writes calibbias = rint(-b / s) (s the axis'
 #    uT per LSB from the EEPROM) and calibscale = diag(W), and _raw is
 #    rint((count + calibbias) * calibscale) exactly;
@@ -15,8 +15,9 @@
 #    half an LSB divided by S, and the final one) at -20, 25 and 70 degC,
 #    in sysfs and in the buffer; without the calibration it is not;
 #  - the daemon rewrites the record (recalibrate) as format 1, the
-#    section unchanged in <record>.magn (issue 40 N6); a new bind starts from the defaults and restore brings the
-#    values back; a format 1 record restores the defaults;
+#    section unchanged in <record>.magn (issue 40 N6); a new bind starts
+#    from the defaults and restore brings the values back; a format 1
+#    record restores the defaults;
 #  - magn-calibrate through the driver on the board tumbling two degrees
 #    a measurement stores a calibration, its samples from both devices'
 #    buffers on the data-ready trigger (one measurement a sample), and
@@ -41,16 +42,6 @@ calibrated() {
 		r = p - q * 1000000; if (r > 500000 || (r == 500000 && q % 2)) q++
 		printf "%s%d", (i > 1 ? " " : ""), q } }'
 }
-# rec2 IN OUT "W (9 numbers)": IN (format 1) with the magnetometer's
-# section for hard iron B and soft iron W, as format 2
-rec2() {
-	sed -e 's/^format = as9888-calibration 1$/format = as9888-calibration 2/' \
-		-e '/^crc32 = /d' "$1" > "$2.body"
-	printf '%s\n' "magn_hard_iron = $MAGN_HARD" "magn_soft_iron = $3" "magn_field = 48.000" \
-		"magn_residual = 0.412" "magn_coverage = 0.875" "magn_samples = 300" \
-		"magn_learned = 2026-11-26T12:00:00Z" >> "$2.body"
-	{ cat "$2.body"; echo "crc32 = $(crc32 < "$2.body")"; } > "$2"
-}
 W=$(echo $MAGN_CALIBSCALE | awk '{ printf "%s 0.000000 0.000000 0.000000 %s 0.000000 0.000000 0.000000 %s", $1, $2, $3 }')
 
 C=$(mg raw)
@@ -63,7 +54,8 @@ rm -f $O/rec
 check "factory test through the driver writes this chip's record" \
 	sh -c "$CALIBD factory-test --backend iio --record $O/rec > $O/ft.log 2>&1"
 magn_iron on
-rec2 $O/rec $O/rec2 "$W"
+cp $O/rec $O/rec2
+record_add_magn $O/rec2 "magn_hard_iron=$MAGN_HARD" "magn_soft_iron=$W"
 WB=$(magn_bias_of "$MAGN_HARD")
 
 # --- restore applies the record's hard iron and the diagonal of W -----------
