@@ -67,8 +67,12 @@ struct sensor {
  * everything else. A started stream is handed to the reader (copied in,
  * its fd set) under @lock; a stream is taken from it (fd set to -1) under
  * @lock, and its descriptor closed only once the reader is out of the
- * poll() that may watch it (@polling, @polls). The reader itself makes no
- * sysfs write but a gone device's buffer stop. Order: @config, then @lock.
+ * poll() that may watch it (@polling, @polls). Each such hand-in and
+ * take-out bumps the stream's generation (@gen): the reader drops the lock
+ * after a poll() (to post), so a stream stopped and started meanwhile may
+ * have the old one's descriptor number, and what poll() said is acted on
+ * only for the generation it watched. The reader itself makes no sysfs
+ * write but a gone device's buffer stop. Order: @config, then @lock.
  */
 struct as9888_hal {
 	struct as9888_hal_config cfg;
@@ -88,6 +92,7 @@ struct as9888_hal {
 	bool stop;
 	bool polling;			/* the reader is in poll() */
 	unsigned long polls;		/* the poll()s it came back from */
+	unsigned long gen[2];		/* each stream's hand-ins and take-outs */
 	bool record_due;		/* the magnetometer started: read the record */
 	char err[256];
 
@@ -234,6 +239,7 @@ static int apply_stream(struct as9888_hal *h, struct hal_stream *s, double hz, i
 	tmp = *s;
 	if (hz == 0) {
 		s->fd = -1;
+		h->gen[dev]++;
 		leave_poll(h);
 	}
 	pthread_mutex_unlock(&h->lock);
@@ -252,6 +258,7 @@ static int apply_stream(struct as9888_hal *h, struct hal_stream *s, double hz, i
 			s->hz = tmp.hz;
 	} else if (hz != 0) {
 		*s = tmp;
+		h->gen[dev]++;
 		h->prev_ts[dev] = 0;
 		if (dev)
 			h->record_due = true;
@@ -492,6 +499,7 @@ static void *reader_thread(void *arg)
 	struct as9888_hal *h = arg;
 	struct pollfd pfd[3];
 	struct hal_stream *streams[2] = { &h->accel, &h->magn };
+	unsigned long gen[2];
 	int64_t deadline;
 	char drain[64];
 	int timeout, i, n;
@@ -508,8 +516,10 @@ static void *reader_thread(void *arg)
 		h->record_due = false;
 
 		pfd[0] = (struct pollfd) { .fd = h->wake[0], .events = POLLIN };
-		for (i = 0; i < 2; i++)
+		for (i = 0; i < 2; i++) {
 			pfd[i + 1] = (struct pollfd) { .fd = streams[i]->fd, .events = POLLIN };
+			gen[i] = h->gen[i];
+		}
 		if (deadline == INT64_MAX) {
 			/* the record is looked at once a second while the magnetometer runs */
 			timeout = h->magn.fd >= 0 ? 1000 : -1;
@@ -533,9 +543,10 @@ static void *reader_thread(void *arg)
 			while (read(h->wake[0], drain, sizeof(drain)) > 0)
 				;
 		for (i = 0; i < 2; i++) {
-			/* a stream stopped since (a post drops the lock) is not this one */
+			/* a stream stopped or started since (a post drops the lock) is
+			 * not the one polled, whatever its descriptor's number */
 			if (!(pfd[i + 1].revents & (POLLIN | POLLERR | POLLHUP)) ||
-			    pfd[i + 1].fd != streams[i]->fd)
+			    gen[i] != h->gen[i])
 				continue;
 			if (!read_stream(h, streams[i], i) || (pfd[i + 1].revents & (POLLERR | POLLHUP)))
 				/* the device went away: stop it rather than spin */

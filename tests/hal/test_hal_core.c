@@ -7,8 +7,10 @@
  * flush, the magnetometer calibration and the daemon feed.
  * Waits detect a stall (10 s without progress), never time a result.
  */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <setjmp.h>
@@ -47,6 +49,9 @@ struct fixture {
 	struct as9888_event ev[MAX_EVENTS];
 	size_t nev;
 	unsigned int posts;
+	/* the reader kept in a post (the HAL's lock released) by the test */
+	bool hold;			/* the next post waits */
+	bool held;			/* a post waits until this is false */
 	/* the daemon stand-in */
 	int listen_fd;
 	pthread_t server;
@@ -62,6 +67,45 @@ static void post(void *ctx, const struct as9888_event *ev, size_t n)
 	for (size_t i = 0; i < n && x->nev < MAX_EVENTS; i++)
 		x->ev[x->nev++] = ev[i];
 	x->posts++;
+	if (x->hold) {
+		x->hold = false;
+		x->held = true;
+	}
+	pthread_cond_broadcast(&x->cond);
+	while (x->held)
+		pthread_cond_wait(&x->cond, &x->lock);
+	pthread_mutex_unlock(&x->lock);
+}
+
+/* The reader's next post waits (until release_post) */
+static void hold_next_post(struct fixture *x)
+{
+	pthread_mutex_lock(&x->lock);
+	x->hold = true;
+	pthread_mutex_unlock(&x->lock);
+}
+
+/* Wait for the reader to be held in a post; fails on a stall */
+static void wait_held(struct fixture *x)
+{
+	struct timespec until;
+
+	pthread_mutex_lock(&x->lock);
+	clock_gettime(CLOCK_REALTIME, &until);
+	until.tv_sec += STALL_S;
+	while (!x->held)
+		if (pthread_cond_timedwait(&x->cond, &x->lock, &until) == ETIMEDOUT && !x->held) {
+			pthread_mutex_unlock(&x->lock);
+			fail_msg("no post to hold the reader in for %d s", STALL_S);
+		}
+	pthread_mutex_unlock(&x->lock);
+}
+
+/* Let a held post return */
+static void release_post(struct fixture *x)
+{
+	pthread_mutex_lock(&x->lock);
+	x->held = false;
 	pthread_cond_broadcast(&x->cond);
 	pthread_mutex_unlock(&x->lock);
 }
@@ -166,6 +210,11 @@ static int teardown(void **state)
 	struct fixture *x = *state;
 	char cmd[128];
 
+	/* a test that failed holding the reader: the HAL must be able to close */
+	pthread_mutex_lock(&x->lock);
+	x->hold = false;
+	pthread_mutex_unlock(&x->lock);
+	release_post(x);
 	as9888_hal_close(x->h);
 	for (int i = 0; i < 2; i++)
 		if (x->fifo[i] >= 0)
@@ -560,6 +609,79 @@ static void running_stream_flows_during_setup(void **state)
 	assert_attr(x->f->dev, "buffer/enable", "0");
 }
 
+/* The descriptor of this process open for reading on @path; -1: none */
+static int reader_fd_on(const char *path)
+{
+	char link[64], target[PATH_MAX];
+	struct dirent *e;
+	DIR *d = opendir("/proc/self/fd");
+	int fd = -1;
+
+	assert_non_null(d);
+	while (fd < 0 && (e = readdir(d))) {
+		int n = atoi(e->d_name);
+		ssize_t len;
+
+		snprintf(link, sizeof(link), "/proc/self/fd/%d", n);
+		len = readlink(link, target, sizeof(target) - 1);
+		if (len < 0 || n == dirfd(d))
+			continue;
+		target[len] = '\0';
+		if (!strcmp(target, path) && (fcntl(n, F_GETFL) & O_ACCMODE) == O_RDONLY)
+			fd = n;
+	}
+	closedir(d);
+	return fd;
+}
+
+/*
+ * A stream stopped and started again while the reader is out of the lock
+ * (in a post, between a poll() and its handling of the second device)
+ * gets the descriptor number the old one had; what that poll() said of
+ * the old one (POLLHUP: its writer gone, as a device gone away says
+ * POLLERR) must not stop the new one. The reader is held in its posts:
+ * the first with the magnetometer's writer closed and more accelerometer
+ * samples written than one post carries, so that the next poll() reports
+ * both and the accelerometer's reading posts before the magnetometer's
+ * turn; in that post the magnetometer is stopped and started.
+ */
+static void restarted_stream_not_stopped_by_old_poll(void **state)
+{
+	struct fixture *x = *state;
+	char node[128];
+	int fd, i;
+
+	/* no feed thread: nothing else opens a descriptor meanwhile */
+	x->cfg.socket[0] = '\0';
+	open_hal(x);
+	activate(x, AS9888_HANDLE_ACCEL, 10000000, 0);
+	activate(x, AS9888_HANDLE_MAGN, 100000000, 0);
+	snprintf(node, sizeof(node), "%s/iio:device1", x->dir);
+	fd = reader_fd_on(node);
+	assert_true(fd >= 0);
+	hold_next_post(x);
+	put_accel(x, 0, 0, 1024, 1000);
+	wait_held(x);
+	for (i = 1; i <= 300; i++)
+		put_accel(x, 0, 0, 1024, 1000 + i * INT64_C(10000000));
+	close(x->fifo[1]);
+	x->fifo[1] = -1;
+	hold_next_post(x);
+	release_post(x);
+	wait_held(x);
+	assert_int_equal(as9888_hal_activate(x->h, AS9888_HANDLE_MAGN, false), 0);
+	activate(x, AS9888_HANDLE_MAGN, 100000000, 0);
+	/* the premise: the new stream has the old one's number */
+	assert_int_equal(reader_fd_on(node), fd);
+	release_post(x);
+	wait_events(x, 301);
+	assert_int_equal(count_of(x, AS9888_HANDLE_ACCEL), 301);
+	assert_attr(x->f->magn, "buffer/enable", "1");
+	put_magn(x, 1, 2, 3, 20000000);
+	wait_events(x, 302);
+	assert_int_equal(count_of(x, AS9888_HANDLE_MAGN), 1);
+}
+
 /* A bad attribute: activate fails, says which, leaves the buffer off */
 static void bad_attribute(void **state)
 {
@@ -604,6 +726,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(unequal_rates, setup, teardown),
 		cmocka_unit_test_setup_teardown(batching_and_flush, setup, teardown),
 		cmocka_unit_test_setup_teardown(running_stream_flows_during_setup, setup, teardown),
+		cmocka_unit_test_setup_teardown(restarted_stream_not_stopped_by_old_poll, setup,
+						teardown),
 		cmocka_unit_test_setup_teardown(bad_attribute, setup, teardown),
 		cmocka_unit_test_setup_teardown(open_errors, setup, teardown),
 	};
