@@ -104,11 +104,13 @@ int cmd_factory_test(const struct cli_opts *o)
 	struct ftest_result res = { 0 };
 	bool stored = false, junit_ok = true;
 	struct atomic_pending junit;
+	struct record_store s;
 	int ret;
 
 	if (o->junit_path && begin_junit(o->junit_path, &junit))
 		return EXIT_FAILURE;
-	if (session_lock(o->record_path, o->lock_timeout_s) < 0 ||
+	if (record_store_open(&s, o->record_path, RECORD_STORE_LOCK,
+			      o->lock_timeout_s) ||
 	    session_run_test(o, &o->ftest, &res)) {
 		if (o->junit_path)
 			atomic_abort(&junit);
@@ -116,7 +118,8 @@ int cmd_factory_test(const struct cli_opts *o)
 	}
 
 	if (res.have_calibration && !report_first_failure(&res.report))
-		stored = session_store_result(o, &res, false);
+		stored = session_store_result(o, &s, &res, false);
+	record_store_close(&s);
 
 	if (o->junit_path)
 		junit_ok = write_junit(&junit, o->junit_path, &res);
@@ -135,12 +138,12 @@ int cmd_factory_test(const struct cli_opts *o)
 }
 
 /* Through the driver: the record's DAC and calibration into its attributes */
-static int restore_iio(const struct cli_opts *o)
+static int restore_iio(const struct cli_opts *o, const struct record_store *s)
 {
 	char dir[IIO_PATH_MAX];
 
 	if (o->device) {
-		if (iio_restore_device(o->record_path, o->device))
+		if (session_restore_iio(s, o->device, true))
 			return EXIT_FAILURE;
 		if (o->verbose)
 			printf("restored %s to %s\n", o->record_path, o->device);
@@ -151,7 +154,7 @@ static int restore_iio(const struct cli_opts *o)
 			IIO_ACCEL_NAME);
 		return EXIT_FAILURE;
 	}
-	if (iio_restore(o->record_path, dir, false))
+	if (session_restore_iio(s, dir, false))
 		return EXIT_FAILURE;
 	if (o->verbose)
 		printf("restored %s to %s\n", o->record_path, dir);
@@ -161,48 +164,53 @@ static int restore_iio(const struct cli_opts *o)
 
 int cmd_restore(const struct cli_opts *o)
 {
-	struct calib_record rec;
+	struct record_store s;
+	const struct calib_record *rec = &s.rec;
 
 	if (o->backend == CLI_BACKEND_NONE) {
 		fprintf(stderr, "as9888-calibd: restore: %s\n", o->backend_why);
 		return EXIT_FAILURE;
 	}
-	if (session_load_record(o->record_path, &rec))
+	/* a .magn that cannot be used (said) stops only the magnetometer's part */
+	if (record_store_open(&s, o->record_path,
+			      RECORD_STORE_LOAD | RECORD_STORE_MAGN_OPTIONAL, 0))
 		return EXIT_FAILURE;
-	if (rec.simulated && o->backend != CLI_BACKEND_SIM) {
+	if (rec->simulated && o->backend != CLI_BACKEND_SIM) {
 		fprintf(stderr, "as9888-calibd: restore: %s was written by a factory test on the simulator (source = simulator), not on this chip: a simulated calibration is never applied to a real one (--backend %s). Run factory-test on this unit; nothing applied\n",
 			o->record_path, cli_backend_name(o->backend));
 		return EXIT_FAILURE;
 	}
 	if (o->backend == CLI_BACKEND_IIO)
-		return restore_iio(o);
-	if (session_apply_record(o, &rec))
+		return restore_iio(o, &s);
+	/* the chip's registers take the accelerometer's part alone */
+	if (session_apply_record(o, rec))
 		return EXIT_FAILURE;
 	if (o->verbose)
 		printf("restored DAC 0x%02x 0x%02x 0x%02x on chip %016llx\n",
-		       rec.dac[0], rec.dac[1], rec.dac[2],
-		       (unsigned long long)record_fingerprint(rec.eeprom));
+		       rec->dac[0], rec->dac[1], rec->dac[2],
+		       (unsigned long long)record_fingerprint(rec->eeprom));
 
 	return EXIT_SUCCESS;
 }
 
 int cmd_show(const struct cli_opts *o)
 {
-	struct calib_record rec;
+	struct record_store st;
+	const struct calib_record *rec = &st.rec;
 	struct show_result s;
 	char err[SESSION_ERR_LEN];
 
-	if (session_load_record(o->record_path, &rec))
+	if (record_store_open(&st, o->record_path, RECORD_STORE_LOAD, 0))
 		return EXIT_FAILURE;
-	if (show_compute(&rec, o->temperature_given, o->temperature_mdegc, &s,
+	if (show_compute(rec, o->temperature_given, o->temperature_mdegc, &s,
 			 err, sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: show: %s\n", err);
 		return EXIT_FAILURE;
 	}
 	if (o->json)
-		show_print_json(stdout, &rec, &s);
+		show_print_json(stdout, rec, &s);
 	else
-		show_print_text(stdout, &rec, &s);
+		show_print_text(stdout, rec, &s);
 
 	return EXIT_SUCCESS;
 }

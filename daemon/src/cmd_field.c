@@ -12,7 +12,6 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "atomic_file.h"
 #include "commands.h"
 #include "ftest_print.h"
 #include "iio.h"
@@ -34,32 +33,34 @@ static void field_opts(const struct cli_opts *o, const struct calib_record *rec,
 int cmd_recalibrate(const struct cli_opts *o)
 {
 	struct ftest_result res = { 0 };
-	struct calib_record old;
+	struct record_store s;
 	struct ftest_opts f;
 	bool stored = false;
 	int ret;
 
-	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
-		return EXIT_FAILURE;
-	if (session_load_record(o->record_path, &old)) {
-		fprintf(stderr, "as9888-calibd: recalibrate needs the factory record; run factory-test first\n");
+	if (record_store_open(&s, o->record_path,
+			      RECORD_STORE_LOCK | RECORD_STORE_LOAD,
+			      o->lock_timeout_s)) {
+		if (s.len < 0)	/* the lock was taken: the record is what failed */
+			fprintf(stderr, "as9888-calibd: recalibrate needs the factory record; run factory-test first\n");
 		return EXIT_FAILURE;
 	}
-	field_opts(o, &old, &f);
+	field_opts(o, &s.rec, &f);
 	if (session_run_test(o, &f, &res))
 		return EXIT_FAILURE;
 
 	/* the accelerometer is recalibrated; the magnetometer's calibration stays */
-	res.rec.magn = old.magn;
+	res.rec.magn = s.rec.magn;
 	if (res.have_calibration && !report_first_failure(&res.report))
-		stored = session_store_result(o, &res, true);
+		stored = session_store_result(o, &s, &res, true);
+	record_store_close(&s);
 	if (o->json) {
 		ftest_print_json(stdout, &res, o->record_path, stored);
 	} else {
 		ftest_print_text(stdout, &res);
 		if (stored)
-			printf("Recalibrated; the previous calibration is kept as %s%s (as9888-calibd rollback)\n",
-			       o->record_path, SESSION_PREVIOUS_SUFFIX);
+			printf("Recalibrated; the previous calibration is kept as %s (as9888-calibd rollback)\n",
+			       s.p.previous);
 	}
 	ret = report_first_failure(&res.report) ? EXIT_FAILURE : EXIT_SUCCESS;
 	ftest_result_free(&res);
@@ -68,43 +69,33 @@ int cmd_recalibrate(const struct cli_opts *o)
 }
 
 /*
- * Through the driver, after the pairs were swapped (the magnetometer's
- * too with @magn): the rolled-back record applied, or the swaps undone
- * (the pairs as they were) when the device takes none of it. 0 or -1,
- * said on stderr.
+ * Through the driver, after both pairs were swapped: the rolled-back
+ * record applied, or the swaps undone (the pairs as they were) when the
+ * device takes none of it. 0 or -1, said on stderr.
  */
-static int rollback_apply_iio(const struct cli_opts *o, const char *cur_text,
-			      long cur_len, const char *prev_text, long prev_len,
-			      const struct calib_record *rec, bool magn)
+static int rollback_apply_iio(const struct cli_opts *o, struct record_store *s,
+			      const struct record_rollback *r)
 {
 	char dir[IIO_PATH_MAX], err[SESSION_ERR_LEN];
 
 	if (!iio_find_device(NULL, dir, sizeof(dir)) &&
 	    !iio_restore(o->record_path, dir, false))
 		return 0;
-	if (magn && session_magn_rollback(o->record_path, rec, true, err,
-					  sizeof(err)) < 0) {
-		fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device, and %s%s could not be put back: %s\n",
-			o->record_path, RECORD_MAGN_SUFFIX, err);
-		return -1;
-	}
-	if (record_pair_replace(o->record_path, cur_text, (size_t)cur_len,
-				prev_text, (size_t)prev_len, RECORD_MODE, err,
-				sizeof(err))) {
+	if (record_store_rollback(s, r, true, err, sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device, and could not be put back: %s\n",
 			err);
 		return -1;
 	}
-	fprintf(stderr, "as9888-calibd: rollback: the device did not take %s%s; nothing changed\n",
-		o->record_path, SESSION_PREVIOUS_SUFFIX);
+	fprintf(stderr, "as9888-calibd: rollback: the device did not take %s; nothing changed\n",
+		s->p.previous);
 	return -1;
 }
 
 /*
  * current := previous, previous := current, as one crash-safe change
  * (record_pair.h): never losing either; then the magnetometer's file
- * <path>.magn and its previous one the same way, when there is a
- * previous one (each command that changes one changes both). On the raw and simulated chips the
+ * <path>.magn and its previous one the same way, when that is the
+ * previous record's (record_store.h). On the raw and simulated chips the
  * previous record is applied first, so a chip it does not belong to leaves
  * the pair as it was; through the driver the restore reads the record
  * file, so the pair is swapped first and swapped back when the device
@@ -112,66 +103,35 @@ static int rollback_apply_iio(const struct cli_opts *o, const char *cur_text,
  */
 int cmd_rollback(const struct cli_opts *o)
 {
-	char prev[PATH_MAX], err[SESSION_ERR_LEN];
-	char cur_text[RECORD_MAX_SIZE], prev_text[RECORD_MAX_SIZE];
-	struct calib_record cur, before;
-	long cur_len, prev_len;
+	static struct record_rollback r;
+	char err[SESSION_ERR_LEN];
+	struct record_store s;
 	bool iio = o->backend == CLI_BACKEND_IIO;
-	int magn;
 
-	snprintf(prev, sizeof(prev), "%s%s", o->record_path, SESSION_PREVIOUS_SUFFIX);
-	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
+	/* the magnetometer's pair is judged by the check */
+	if (record_store_open(&s, o->record_path, RECORD_STORE_LOCK |
+			      RECORD_STORE_LOAD | RECORD_STORE_MAGN_OPTIONAL,
+			      o->lock_timeout_s) ||
+	    record_store_rollback_check(&s, &r))
 		return EXIT_FAILURE;
-	if (access(prev, F_OK) && errno == ENOENT) {
-		fprintf(stderr, "as9888-calibd: rollback: there is no %s: nothing to roll back (only recalibrate keeps a previous record)\n",
-			prev);
-		return EXIT_FAILURE;
-	}
-	cur_len = session_read_record(o->record_path, &cur, cur_text);
-	prev_len = cur_len < 0 ? cur_len : session_read_record(prev, &before, prev_text);
-	if (cur_len < 0 || prev_len < 0)
-		return EXIT_FAILURE;
-	if (memcmp(cur.eeprom, before.eeprom, AS9888_EEPROM_LEN)) {
-		fprintf(stderr, "as9888-calibd: rollback: %s belongs to another chip; nothing changed\n",
-			prev);
-		return EXIT_FAILURE;
-	}
-	/* the magnetometer's pair readable before anything changes */
-	magn = session_magn_rollback(o->record_path, &cur, false, err,
-				     sizeof(err));
-	if (magn < 0) {
-		fprintf(stderr, "as9888-calibd: rollback: %s; nothing changed\n",
-			err);
-		return EXIT_FAILURE;
-	}
 	/* its own message says "nothing applied"; the pair is untouched */
-	if (!iio && session_apply_record(o, &before))
+	if (!iio && session_apply_record(o, &r.before))
 		return EXIT_FAILURE;
-	if (record_pair_replace(o->record_path, prev_text, (size_t)prev_len,
-				cur_text, (size_t)cur_len, RECORD_MODE, err,
-				sizeof(err))) {
+	if (record_store_rollback(&s, &r, false, err, sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: rollback: %s\n", err);
-		if (!iio && !session_apply_record(o, &cur))
-			fprintf(stderr, "as9888-calibd: rollback: the chip runs %s again; nothing changed\n",
+		if (!iio && !session_apply_record(o, &s.rec))
+			fprintf(stderr, "as9888-calibd: rollback: the chip runs %s again\n",
 				o->record_path);
 		return EXIT_FAILURE;
 	}
-	if (magn)
-		magn = session_magn_rollback(o->record_path, &cur, true, err,
-					     sizeof(err));
-	if (magn < 0) {
-		fprintf(stderr, "as9888-calibd: rollback: %s holds the accelerometer's calibration from before the last change, but the magnetometer's (%s%s) is not rolled back: %s\n",
-			o->record_path, o->record_path, RECORD_MAGN_SUFFIX, err);
+	if (iio && rollback_apply_iio(o, &s, &r))
 		return EXIT_FAILURE;
-	}
-	if (iio && rollback_apply_iio(o, cur_text, cur_len, prev_text, prev_len,
-				      &cur, magn))
-		return EXIT_FAILURE;
+	record_store_close(&s);
 	printf("Rolled back: %s holds the calibration from before the last recalibration\n",
 	       o->record_path);
-	if (magn)
-		printf("Rolled back: %s%s holds the magnetometer's calibration from before the last change\n",
-		       o->record_path, RECORD_MAGN_SUFFIX);
+	if (r.magn)
+		printf("Rolled back: %s holds the magnetometer's calibration from before the last change\n",
+		       s.p.magn);
 	return EXIT_SUCCESS;
 }
 
@@ -182,6 +142,7 @@ int cmd_check(const struct cli_opts *o)
 {
 	struct ftest_result res = { 0 };
 	struct as9888_eeprom ee;
+	struct record_store s;
 	struct calib_record rec;
 	struct ftest_opts f;
 	const struct judgment *j;
@@ -189,8 +150,9 @@ int cmd_check(const struct cli_opts *o)
 	double diff[AS9888_AXES], deg[AS9888_AXES], worst = 0.0;
 	int axis, ret;
 
-	if (session_load_record(o->record_path, &rec))
+	if (record_store_open(&s, o->record_path, RECORD_STORE_LOAD, 0))
 		return EXIT_FAILURE;
+	rec = s.rec;
 	field_opts(o, &rec, &f);
 	f.measure_only = true;
 	if (session_run_test(o, &f, &res))

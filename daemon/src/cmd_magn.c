@@ -18,20 +18,21 @@
 
 int cmd_magn_show(const struct cli_opts *o)
 {
-	struct calib_record rec;
+	struct record_store s;
+	const struct calib_record *rec = &s.rec;
 
-	if (session_load_record(o->record_path, &rec))
+	if (record_store_open(&s, o->record_path, RECORD_STORE_LOAD, 0))
 		return EXIT_FAILURE;
-	if (!rec.magn.present) {
-		fprintf(stderr, "as9888-calibd: %s has no magnetometer calibration (no %s%s with one, nor a format 2 record): run as9888-calibd magn-calibrate\n",
-			o->record_path, o->record_path, RECORD_MAGN_SUFFIX);
+	if (!rec->magn.present) {
+		fprintf(stderr, "as9888-calibd: %s has no magnetometer calibration (no %s with one, nor a format 2 record): run as9888-calibd magn-calibrate\n",
+			o->record_path, s.p.magn);
 		return EXIT_FAILURE;
 	}
 	if (o->json) {
-		magn_show_json(stdout, &rec, 0);
+		magn_show_json(stdout, rec, 0);
 		fputc('\n', stdout);
 	} else {
-		magn_show_text(stdout, &rec);
+		magn_show_text(stdout, rec);
 	}
 
 	return EXIT_SUCCESS;
@@ -103,16 +104,20 @@ int cmd_magn_calibrate(const struct cli_opts *o)
 	struct magn_session_result res;
 	char accel[IIO_PATH_MAX], err[SESSION_ERR_LEN];
 	struct magn_source *src;
+	struct record_store s;
 	struct calib_record rec;
 	bool driver;
 	int ret;
 
-	if (session_lock(o->record_path, o->lock_timeout_s) < 0)
-		return EXIT_FAILURE;
-	if (session_load_record(o->record_path, &rec)) {
-		fprintf(stderr, "as9888-calibd: magn-calibrate adds to the record of factory-test (the chip's identity): run factory-test first\n");
+	/* a .magn that cannot be used (said) is what this replaces */
+	if (record_store_open(&s, o->record_path, RECORD_STORE_LOCK |
+			      RECORD_STORE_LOAD | RECORD_STORE_MAGN_OPTIONAL,
+			      o->lock_timeout_s)) {
+		if (s.len < 0)	/* the lock was taken: the record is what failed */
+			fprintf(stderr, "as9888-calibd: magn-calibrate adds to the record of factory-test (the chip's identity): run factory-test first\n");
 		return EXIT_FAILURE;
 	}
+	rec = s.rec;
 	if (rec.simulated && o->backend != CLI_BACKEND_SIM) {
 		fprintf(stderr, "as9888-calibd: %s was written by a factory test on the simulator (source = simulator), not on this chip: run factory-test on this unit; nothing measured\n",
 			o->record_path);
@@ -144,14 +149,15 @@ int cmd_magn_calibrate(const struct cli_opts *o)
 		return EXIT_FAILURE;
 	}
 	print_fit(&rec.magn, &res);
-	ret = session_save_record(o->record_path, &rec, true, err, sizeof(err));
+	ret = record_store_replace(&s, &rec, true, err, sizeof(err));
+	record_store_close(&s);
 	if (ret) {
 		fprintf(stderr, "as9888-calibd: magn-calibrate: cannot store the record: %s\n",
 			err);
 		return EXIT_FAILURE;
 	}
-	printf("Stored in %s; the previous record is kept as %s%s (as9888-calibd rollback)\n",
-	       o->record_path, o->record_path, SESSION_PREVIOUS_SUFFIX);
+	printf("Stored in %s; the previous record is kept as %s (as9888-calibd rollback)\n",
+	       o->record_path, s.p.previous);
 	/* through the driver: in effect now, as restore puts it at boot */
 	if (driver && iio_apply_magn_checked(accel, &rec, o->record_path))
 		return EXIT_FAILURE;

@@ -58,7 +58,11 @@ static int read_text(const char *path, char *buf, size_t size, size_t *len,
 
 /*
  * The magnetometer's file beside the record (<@path>.magn), when there is
- * one: @rec->magn is what it holds. 0, or -errno with why in @err.
+ * one: @rec->magn is what it holds, judged as the daemon judges it
+ * (record_magn_of(): valid, the record's chip, the record's generation).
+ * Read here with read_text(), not the daemon's store: an application has
+ * no trust policy of the daemon's to apply, and must never block on the
+ * path. 0, or -errno with why in @err.
  */
 static int read_magn_file(const char *path, struct calib_record *rec,
 			  char *err, size_t errlen)
@@ -66,7 +70,6 @@ static int read_magn_file(const char *path, struct calib_record *rec,
 	char file[PATH_MAX], buf[RECORD_MAX_SIZE + 1], why[256];
 	struct calib_magn m;
 	size_t len = 0;
-	uint64_t chip;
 	int ret;
 
 	if (snprintf(file, sizeof(file), "%s%s", path, RECORD_MAGN_SUFFIX) >=
@@ -79,19 +82,16 @@ static int read_magn_file(const char *path, struct calib_record *rec,
 		return 0;
 	if (ret)
 		return ret;
-	if (record_magn_parse(buf, len, &m, &chip, why, sizeof(why))) {
-		snprintf(err, errlen, "%s: not a valid magnetometer calibration: %s",
-			 file, why);
-		return -EINVAL;
-	}
-	if (chip != record_fingerprint(rec->eeprom)) {
-		snprintf(err, errlen, "%s belongs to another chip than %s: not used",
-			 file, path);
-		return -EINVAL;
-	}
-	rec->magn = m;
+	ret = record_magn_of(rec, buf, len, &m, why, sizeof(why));
+	if (ret == -EXDEV)
+		snprintf(err, errlen, "%s belongs to another chip than %s (%s): not used",
+			 file, path, why);
+	else if (ret)
+		snprintf(err, errlen, "%s is %s: not used", file, why);
+	else
+		rec->magn = m;
 
-	return 0;
+	return ret ? -EINVAL : 0;
 }
 
 int as9888_magn_load(const char *path, struct as9888_magn_calibration *cal,

@@ -282,25 +282,26 @@ static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
 {
 	char err[SESSION_ERR_LEN];
 	struct calib_magn next;
+	struct record_store s;
 	int64_t now = (int64_t)time(NULL);
-	int lock, ret;
+	int ret;
 
 	if (r->status != MAGCAL_OK ||
 	    magn_session_to_record(r, now, &next, err, sizeof(err)) ||
 	    !magn_field_should_replace(&rec->magn, &next, now))
 		return 0;
 	/* someone else changing the record now: the next fit tries again */
-	lock = session_lock(o->record_path, 0);
-	if (lock < 0)
+	if (record_store_open(&s, o->record_path,
+			      RECORD_STORE_LOCK | RECORD_STORE_LOAD, 0))
 		return 0;
-	if (session_load_record(o->record_path, rec) ||
-	    !magn_field_should_replace(&rec->magn, &next, now)) {
-		close(lock);
+	*rec = s.rec;
+	if (!magn_field_should_replace(&rec->magn, &next, now)) {
+		record_store_close(&s);
 		return 0;
 	}
 	rec->magn = next;
-	ret = session_save_record(o->record_path, rec, true, err, sizeof(err));
-	close(lock);
+	ret = record_store_replace(&s, rec, true, err, sizeof(err));
+	record_store_close(&s);
 	if (ret) {
 		fprintf(stderr, "as9888-calibd: field mode: cannot store the magnetometer calibration: %s\n",
 			err);
@@ -326,13 +327,15 @@ int cmd_magn_feed(const struct cli_opts *o)
 	struct magn_driver_cal d;
 	struct magcal_config cfg;
 	struct magcal_result r;
+	struct record_store st;
 	struct calib_record rec;
 	int ret;
 
 	if (!o->magn_feed)
 		return EXIT_FAILURE;
-	if (session_load_record(o->record_path, &rec))
+	if (record_store_open(&st, o->record_path, RECORD_STORE_LOAD, 0))
 		return EXIT_FAILURE;
+	rec = st.rec;
 	driver_state(&rec, &d, accel, sizeof(accel));
 	magn_scale_ut(rec.eeprom, s);
 	magn_field_uncorrect(o->magn_feed, d.calibbias, d.calibscale_micro, s, m);

@@ -135,7 +135,7 @@ int main(int argc, char **argv)
 		return EXIT_USAGE;
 	}
 
-	if (session_trust_setup(o.state_group, err, sizeof(err))) {
+	if (record_store_trust_setup(o.state_group, err, sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: %s\n", err);
 		return EXIT_USAGE;
 	}

@@ -345,6 +345,12 @@ static int format_magn(const struct calib_magn *m, bool rotation, char *buf,
 		      v[0], v[1], v[2], m->samples, learned);
 }
 
+/* The crc32 line over @buf's @len bytes appended: the total length or -ENOSPC */
+static int seal(char *buf, size_t size, size_t len)
+{
+	return append(buf, size, len, "crc32 = %08x\n", record_crc32(buf, len));
+}
+
 int record_format(const struct calib_record *rec, char *buf, size_t size)
 {
 	char mean[AS9888_AXES][32], t_level[32], created[32];
@@ -389,10 +395,10 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 		return -ENOSPC;
 	len = (size_t)n;
 	if (rec->simulated) {
-		n = snprintf(buf + len, size - len, "source = simulator\n");
-		if (n < 0 || (size_t)n >= size - len)
-			return -ENOSPC;
-		len += (size_t)n;
+		n = append(buf, size, len, "source = simulator\n");
+		if (n < 0)
+			return n;
+		len = (size_t)n;
 	}
 	if (rec->magn.present) {
 		n = format_magn(&rec->magn, false, buf, size, len);
@@ -401,18 +407,7 @@ int record_format(const struct calib_record *rec, char *buf, size_t size)
 		len = (size_t)n;
 	}
 
-	n = snprintf(buf + len, size - len, "crc32 = %08x\n",
-		     record_crc32(buf, len));
-	if (n < 0 || (size_t)n >= size - len)
-		return -ENOSPC;
-
-	return (int)(len + (size_t)n);
-}
-
-/* The crc32 line over @buf's @len bytes appended: the total length or -ENOSPC */
-static int seal(char *buf, size_t size, size_t len)
-{
-	return append(buf, size, len, "crc32 = %08x\n", record_crc32(buf, len));
+	return seal(buf, size, len);
 }
 
 int record_magn_format(const struct calib_magn *m,
@@ -887,8 +882,9 @@ int record_parse(const char *text, size_t len, struct calib_record *rec,
 	return record_validate(rec, err, errlen);
 }
 
-int record_magn_parse(const char *text, size_t len, struct calib_magn *m,
-		      uint64_t *chip, char *err, size_t errlen)
+/* record_magn_parse(), with the file's "created" in @created */
+static int magn_parse(const char *text, size_t len, struct calib_magn *m,
+		      uint64_t *chip, int64_t *created, char *err, size_t errlen)
 {
 	bool seen[KEY_COUNT] = { false };
 	struct calib_record rec;
@@ -916,8 +912,45 @@ int record_magn_parse(const char *text, size_t len, struct calib_magn *m,
 	*m = rec.magn;
 	m->present = n > 0;
 	m->has_rotation = m->present;
+	*created = rec.created;
 
 	return m->present ? record_magn_validate(m, err, errlen) : 0;
+}
+
+int record_magn_parse(const char *text, size_t len, struct calib_magn *m,
+		      uint64_t *chip, char *err, size_t errlen)
+{
+	int64_t created;
+
+	return magn_parse(text, len, m, chip, &created, err, errlen);
+}
+
+int record_magn_of(const struct calib_record *rec, const char *text,
+		   size_t len, struct calib_magn *m, char *err, size_t errlen)
+{
+	char why[256], mine[32], its[32];
+	uint64_t chip;
+	int64_t created;
+
+	if (magn_parse(text, len, m, &chip, &created, why, sizeof(why)))
+		return fail(err, errlen, "not a valid magnetometer calibration: %s",
+			    why);
+	if (chip != record_fingerprint(rec->eeprom)) {
+		fail(err, errlen, "of chip %016llx, the record's is %016llx",
+		     (unsigned long long)chip,
+		     (unsigned long long)record_fingerprint(rec->eeprom));
+		return -EXDEV;
+	}
+	if (created == rec->created)
+		return 0;
+	if (format_time(created, its, sizeof(its)))
+		snprintf(its, sizeof(its), "%lld", (long long)created);
+	if (format_time(rec->created, mine, sizeof(mine)))
+		snprintf(mine, sizeof(mine), "%lld", (long long)rec->created);
+	fail(err, errlen, "of another change of the record (created %s, the record %s)",
+	     its, mine);
+
+	return -ESTALE;
 }
 
 int record_level_offsets(const struct calib_record *rec,

@@ -154,6 +154,18 @@ int record_magn_format(const struct calib_magn *m,
 int record_magn_parse(const char *text, size_t len, struct calib_magn *m,
 		      uint64_t *chip, char *err, size_t errlen);
 
+/*
+ * <record>.magn's text (or its .previous) judged against the record @rec
+ * it belongs beside: valid, of @rec's chip, and of the same change of the
+ * record (its "created" equal to @rec->created: a crash between the two
+ * files' changes leaves them a generation apart). The calibration into @m
+ * (@m->present false for a file that holds none). 0, or -EINVAL (not
+ * valid), -EXDEV (another chip's) or -ESTALE (another generation's), with
+ * why in @err (without the file's name).
+ */
+int record_magn_of(const struct calib_record *rec, const char *text,
+		   size_t len, struct calib_magn *m, char *err, size_t errlen);
+
 /* Ot_L per axis: A + St(t_L) * G, from the record */
 int record_level_offsets(const struct calib_record *rec,
 			 const struct as9888_eeprom *ee,

@@ -13,33 +13,6 @@
 #include "record_pair.h"
 #include "storage_trust.h"
 
-struct pair_paths {
-	char prev[PATH_MAX];
-	char journal[PATH_MAX];
-};
-
-static int pair_paths(const char *path, struct pair_paths *p, char *err,
-		      size_t errlen)
-{
-	if (snprintf(p->prev, sizeof(p->prev), "%s%s", path,
-		     RECORD_PAIR_PREVIOUS) >= (int)sizeof(p->prev) ||
-	    snprintf(p->journal, sizeof(p->journal), "%s%s", path,
-		     RECORD_PAIR_JOURNAL) >= (int)sizeof(p->journal)) {
-		snprintf(err, errlen, "record path %s is too long", path);
-		return -ENAMETOOLONG;
-	}
-
-	return 0;
-}
-
-/* Is @path the magnetometer's file (<record>.magn), not a record? */
-static bool is_magn_file(const char *path)
-{
-	size_t n = strlen(path), s = strlen(RECORD_MAGN_SUFFIX);
-
-	return n > s && !strcmp(path + n - s, RECORD_MAGN_SUFFIX);
-}
-
 /*
  * The journal at @journal into @buf: believed (@trust, NULL when we just
  * wrote it ourselves) and a valid record (a valid magnetometer file with
@@ -73,27 +46,24 @@ static long read_journal(const char *journal, bool magn,
 	return len;
 }
 
-int record_pair_recover(const char *path, const struct storage_trust *trust,
+int record_pair_recover(const struct record_pair *p,
+			const struct storage_trust *trust,
 			enum record_pair_recovery *what, char *err, size_t errlen)
 {
 	char journal[RECORD_MAX_SIZE], cur[RECORD_MAX_SIZE], why[512];
-	bool magn = is_magn_file(path);
-	struct pair_paths p;
+	bool magn = p->kind == RECORD_PAIR_MAGN;
 	long jlen, clen;
 	int ret;
 
 	*what = RECORD_PAIR_CLEAN;
-	ret = pair_paths(path, &p, err, errlen);
-	if (ret)
-		return ret;
-	if (access(p.journal, F_OK) && errno == ENOENT)
+	if (access(p->journal, F_OK) && errno == ENOENT)
 		return 0;
 
 	/* nothing is renamed or removed on the word of a journal not believed */
-	jlen = read_journal(p.journal, magn, trust, journal, sizeof(journal),
+	jlen = read_journal(p->journal, magn, trust, journal, sizeof(journal),
 			    why, sizeof(why));
 	clen = jlen < 0 ? jlen :
-	       read_file_nofollow(path, cur, sizeof(cur), why, sizeof(why));
+	       read_file_nofollow(p->path, cur, sizeof(cur), why, sizeof(why));
 	/*
 	 * <record>.magn's first change (no file before it): not made yet. A
 	 * record's journal holds the only copy of the record it replaces, so
@@ -101,18 +71,18 @@ int record_pair_recover(const char *path, const struct storage_trust *trust,
 	 */
 	if (magn && clen == -ENOENT) {
 		*what = RECORD_PAIR_UNDONE;
-		return durable_unlink(p.journal, err, errlen);
+		return durable_unlink(p->journal, err, errlen);
 	}
 	if (jlen < 0 || clen < 0) {
 		snprintf(err, errlen, "an interrupted change of %s cannot be finished: %s; nothing changed: move %s aside by hand",
-			 path, why, p.journal);
+			 p->path, why, p->journal);
 		return jlen < 0 ? (int)jlen : (int)clen;
 	}
 	if (jlen == clen && !memcmp(journal, cur, (size_t)clen)) {
-		ret = durable_unlink(p.journal, err, errlen);
+		ret = durable_unlink(p->journal, err, errlen);
 		*what = RECORD_PAIR_UNDONE;
 	} else {
-		ret = durable_rename(p.journal, p.prev, err, errlen);
+		ret = durable_rename(p->journal, p->prev, err, errlen);
 		*what = RECORD_PAIR_FINISHED;
 	}
 
@@ -136,24 +106,24 @@ static bool holds(const char *path, const char *data, size_t len)
  * the old pair, or with a journal left when even settling failed (the next
  * command's recovery decides then, and @err says so).
  */
-static int settle(const char *path, const struct pair_paths *p, const char *cur,
-		  size_t cur_len, int ret, char *err, size_t errlen)
+static int settle(const struct record_pair *p, const char *cur, size_t cur_len,
+		  int ret, char *err, size_t errlen)
 {
 	enum record_pair_recovery what;
 	char why[256];
 	int rec;
 
-	rec = record_pair_recover(path, NULL, &what, why, sizeof(why));
+	rec = record_pair_recover(p, NULL, &what, why, sizeof(why));
 	if (!rec && what == RECORD_PAIR_CLEAN)
-		rec = durable_sync_dir(path, why, sizeof(why));
+		rec = durable_sync_dir(p->path, why, sizeof(why));
 	if (rec) {
 		size_t n = strlen(err);
 
 		snprintf(err + n, errlen - n, "; the change is left unfinished (%s): the next command that takes %s.lock finishes or undoes it",
-			 why, path);
+			 why, p->path);
 		return ret;
 	}
-	if (what != RECORD_PAIR_UNDONE && holds(path, cur, cur_len) &&
+	if (what != RECORD_PAIR_UNDONE && holds(p->path, cur, cur_len) &&
 	    access(p->journal, F_OK) && errno == ENOENT)
 		return 0;
 
@@ -180,24 +150,21 @@ static int check_previous(const char *prev, char *err, size_t errlen)
 	return S_ISDIR(st.st_mode) ? -EISDIR : -EINVAL;
 }
 
-int record_pair_replace(const char *path, const char *cur, size_t cur_len,
-			const char *prev, size_t prev_len, unsigned int mode,
-			char *err, size_t errlen)
+int record_pair_replace(const struct record_pair *p, const char *cur,
+			size_t cur_len, const char *prev, size_t prev_len,
+			unsigned int mode, char *err, size_t errlen)
 {
-	struct pair_paths p;
 	int ret;
 
-	ret = pair_paths(path, &p, err, errlen);
-	if (!ret)
-		ret = check_previous(p.prev, err, errlen);
+	ret = check_previous(p->prev, err, errlen);
 	if (ret)
 		return ret;
-	ret = atomic_write_file(p.journal, prev, prev_len, mode, err, errlen);
+	ret = atomic_write_file(p->journal, prev, prev_len, mode, err, errlen);
 	if (!ret)
-		ret = atomic_write_file(path, cur, cur_len, mode, err, errlen);
+		ret = atomic_write_file(p->path, cur, cur_len, mode, err, errlen);
 	if (!ret)
-		ret = durable_rename(p.journal, p.prev, err, errlen);
+		ret = durable_rename(p->journal, p->prev, err, errlen);
 
 	/* a failed step: back to the old pair, or on to the new one */
-	return ret ? settle(path, &p, cur, cur_len, ret, err, errlen) : 0;
+	return ret ? settle(p, cur, cur_len, ret, err, errlen) : 0;
 }

@@ -772,12 +772,7 @@ static int serve_once(struct service *s)
  */
 static void recover_record(const struct cli_opts *o)
 {
-	char journal[PATH_MAX];
-
-	snprintf(journal, sizeof(journal), "%s%s", o->record_path,
-		 RECORD_PAIR_JOURNAL);
-	if (!access(journal, F_OK))
-		session_recover_now(o->record_path);
+	record_store_recover_now(o->record_path);
 }
 
 /* At start: every AS9888 IIO device already there gets its calibration */

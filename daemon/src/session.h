@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-2.0 */
-/* What every command needs: its backend, and the record read and written. */
+/* What every command needs besides the record store: its backend, the test, the chip applied. */
 #ifndef AS9888_SESSION_H
 #define AS9888_SESSION_H
 
@@ -10,42 +10,13 @@
 #include "cli.h"
 #include "ftest.h"
 #include "record.h"
-#include "record_pair.h"
+#include "record_store.h"
 #include "transport.h"
 
-#define RECORD_MODE		0644
-/* Nobody else may open the lock: flock() needs only read access (lock_file.h) */
-#define LOCK_MODE		0600
-#define STATE_DIR_MODE		0755
-#define SESSION_ERR_LEN		512
-#define SESSION_PREVIOUS_SUFFIX	RECORD_PAIR_PREVIOUS
-#define SESSION_LOCK_SUFFIX	".lock"
+#define SESSION_ERR_LEN		RECORD_STORE_ERR_LEN
 
-/*
- * Whose record files are believed when run as root: root's, which the
- * group @state_group (NULL: none) may write too (storage_trust.h). Called
- * once, before any record is read or written. 0 or -errno, why in @err.
- */
-int session_trust_setup(const char *state_group, char *err, size_t errlen);
-
-/* Both print the reason to stderr and return -errno on failure */
+/* The command's backend; 0, or -errno said on stderr */
 int session_open_backend(const struct cli_opts *o, struct transport **t);
-int session_load_record(const char *path, struct calib_record *rec);
-/* The same, keeping the text in @buf (RECORD_MAX_SIZE): its length or -errno */
-long session_read_record(const char *path, struct calib_record *rec, char *buf);
-int session_save_record(const char *path, struct calib_record *rec,
-			bool keep_previous, char *err, size_t errlen);
-
-/*
- * Rollback's second half: <@path>.magn and <@path>.magn.previous swapped
- * (both believed, valid and of @rec's chip), or with !@swap only checked
- * (before the record's pair is swapped, so that files that cannot be read
- * stop a rollback before it changes anything). 1 when swapped (or it
- * can be), 0 when there is no pair to swap, or -errno with why in @err
- * (nothing changed, or the pair settled as record_pair_replace() says)
- */
-int session_magn_rollback(const char *path, const struct calib_record *rec,
-			  bool swap, char *err, size_t errlen);
 
 /* Apply @rec to the chip (identity checked first); 0 or -errno, said on stderr */
 int session_apply_record(const struct cli_opts *o, const struct calib_record *rec);
@@ -58,43 +29,44 @@ int session_run_test(const struct cli_opts *o, const struct ftest_opts *f,
 		     struct ftest_result *res);
 
 /*
- * Step 4-1: store @res's record crash-safely (keeping the one it replaces
- * as <path>.previous with @keep_previous) and put it in effect; the
- * outcome is judged in @res's report. True when both were done.
+ * Step 4-1: store @res's record crash-safely in @s (locked; keeping the
+ * one it replaces as <path>.previous with @keep_previous) and put it in
+ * effect; the outcome is judged in @res's report. True when both were done.
  */
-bool session_store_result(const struct cli_opts *o, struct ftest_result *res,
-			  bool keep_previous);
+bool session_store_result(const struct cli_opts *o, struct record_store *s,
+			  struct ftest_result *res, bool keep_previous);
 
 /* Put a newly stored record in effect on the device; 0 or -errno (said) */
 int session_activate_record(const struct cli_opts *o,
 			    const struct calib_record *rec);
 
 /*
- * Lock @path's record for writing, waiting at most @timeout_s for another
- * holder, and finish or undo a change of the record and its previous one
- * that was interrupted (record_pair.h). The lock's fd (held until exit),
- * or -errno (said on stderr).
+ * Apply the record loaded in @s (record_store_open() with
+ * RECORD_STORE_MAGN_OPTIONAL) to the AS9888 IIO device at @dir, both its
+ * parts (iio_apply_checked()), or with @one_device that device's part
+ * (iio_apply_device()). When <record>.magn could not be used (said by the
+ * store), the accelerometer's part is applied and the magnetometer is left
+ * as it was; that fails the call unless @dir is the accelerometer's device
+ * alone. 0 or -errno, said on stderr.
  */
-int session_lock(const char *path, unsigned int timeout_s);
-
-/*
- * The same recovery without waiting: done now when nobody holds the lock;
- * when a command holds it, that command has done it. 0 or -errno (said).
- */
-int session_recover_now(const char *path);
+int session_restore_iio(const struct record_store *s, const char *dir,
+			bool one_device);
 
 /*
  * Apply the record at @record_path to the AS9888 IIO device at @dir: the
  * chip must be the record's (EEPROM), and a record made on the simulator
  * ("source = simulator") is refused unless @allow_simulated (the caller
- * itself runs on the simulator). 0 or -errno, said on stderr.
+ * itself runs on the simulator). A <record>.magn that cannot be used does
+ * not stop the accelerometer's part: it is applied, and the restore still
+ * fails (the magnetometer is left as it was). 0 or -errno, said on stderr.
  */
 int iio_restore(const char *record_path, const char *dir,
 		bool allow_simulated);
 
 /*
  * The same for the one AS9888 IIO device at @dir, accelerometer or
- * magnetometer (iio_apply_device()): restore --device.
+ * magnetometer (iio_apply_device()): restore --device. The
+ * accelerometer's device does not need <record>.magn.
  */
 int iio_restore_device(const char *record_path, const char *dir);
 

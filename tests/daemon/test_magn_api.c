@@ -144,7 +144,8 @@ static void loads_and_corrects(void **state)
  * A turned board (issue 39 point 5): the record format 1, the calibration
  * with its turn Rrot in <record>.magn; the application gets Rrot W (m - b)
  * and the HAL's uncalibrated field Rrot W m with the bias Rrot W b. A
- * .magn file of another chip is refused, one of none is no calibration.
+ * .magn file of another chip, or of another change of the record, is
+ * refused; one of none is no calibration.
  */
 static void turned_board(void **state)
 {
@@ -209,6 +210,12 @@ static void turned_board(void **state)
 				      sizeof(buf)), file, sizeof(file));
 	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EINVAL);
 	assert_non_null(strstr(err, "another chip"));
+	/* one of another change of the record (its created): refused too */
+	write_text("turned.magn", buf,
+		   record_magn_format(&rec.magn, example, rec.created + 1, buf,
+				      sizeof(buf)), file, sizeof(file));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EINVAL);
+	assert_non_null(strstr(err, "another change of the record"));
 	/* a .magn file of none (after a rollback): no calibration */
 	rec.magn.present = false;
 	write_text("turned.magn", buf,

@@ -295,6 +295,71 @@ static void device_magn_other_chip(void **state)
 }
 
 /*
+ * <record>.magn written beside "cal1" (a format 1 record): the example
+ * calibration of the record's generation, or shifted by @created_delta
+ * seconds (another change of the record), or @garbage
+ */
+static void write_magn_file(const struct fake_sysfs *f, long created_delta,
+			    const char *garbage)
+{
+	char buf[RECORD_MAX_SIZE];
+	int len;
+
+	if (garbage) {
+		fake_put(f->root, "cal1.magn", garbage);
+		return;
+	}
+	len = record_magn_format(&magn_example, fake_example_eeprom,
+				 test_record.created + created_delta, buf,
+				 sizeof(buf));
+	assert_true(len > 0);
+	fake_put_bytes(f->root, "cal1.magn", buf, (size_t)len);
+}
+
+/*
+ * A <record>.magn that cannot be used (not valid, or of another change of
+ * the record: the two files are one generation) does not stop restore
+ * applying the accelerometer's part; the magnetometer is left as it was,
+ * and the restore fails unless it was for the accelerometer's device alone
+ */
+static void bad_magn_file_keeps_accel(void **state)
+{
+	struct fake_sysfs *f = *state;
+	char path[256];
+
+	reset(f, true);
+	write_record(f, "cal1", false, path, sizeof(path));
+	/* of the record's generation: used */
+	write_magn_file(f, 0, NULL);
+	assert_int_equal(iio_restore(path, f->dev, false), 0);
+	expect_accel_restored(f);
+	expect(f->magn, "in_magn_x_calibbias", "-100");
+
+	reset(f, true);
+	fake_put(f->magn, "in_magn_x_calibbias", "77\n");
+	write_magn_file(f, 1, NULL);
+	assert_int_equal(iio_restore(path, f->dev, false), -ESTALE);
+	expect_accel_restored(f);
+	expect(f->magn, "in_magn_x_calibbias", "77\n");
+
+	reset(f, true);
+	write_magn_file(f, 0, "format = as9888-magnetometer 1\ntorn");
+	assert_int_equal(iio_restore(path, f->dev, false), -EINVAL);
+	expect_accel_restored(f);
+	expect(f->magn, "in_magn_x_calibscale", "1.000000\n");
+
+	/* restore --device: the accelerometer's needs no .magn */
+	reset(f, true);
+	assert_int_equal(iio_restore_device(path, f->dev), 0);
+	expect_accel_restored(f);
+	assert_int_equal(iio_restore_device(path, f->magn), -EINVAL);
+	expect(f->magn, "in_magn_x_calibscale", "1.000000\n");
+	assert_int_equal(unlink(path), 0);
+	snprintf(path, sizeof(path), "%s/cal1.magn", f->root);
+	assert_int_equal(unlink(path), 0);
+}
+
+/*
  * magn-calibrate and the field mode change only the magnetometer's part:
  * that part alone is applied, on the record's chip, never from a record
  * made on the simulator
@@ -404,6 +469,7 @@ int main(void)
 		cmocka_unit_test(device_magn_alone),
 		cmocka_unit_test(device_other_refused),
 		cmocka_unit_test(device_magn_other_chip),
+		cmocka_unit_test(bad_magn_file_keeps_accel),
 		cmocka_unit_test(magn_checked_alone),
 		cmocka_unit_test(split_refuses_out_of_range),
 		cmocka_unit_test(split_recombines),
