@@ -26,9 +26,10 @@
 # makes it), the rst and the ABI file. checkpatch asks every patch that
 # adds files to update MAINTAINERS (FILE_PATH_CHANGES); a patch whose new
 # files all lie in the driver directory, which the entry covers already,
-# is checked with that one warning ignored. What is not sent: drivers/iio/imu/as9888/Kbuild and compat/ (the out-of-tree
-# build on older kernels), lib/calib/ (userspace-only arithmetic), the
-# top-level Kbuild.
+# is checked with that one warning ignored. What is not sent:
+# drivers/iio/imu/as9888/Kbuild and compat/ (the out-of-tree build on
+# older kernels), lib/calib/ (userspace-only arithmetic), the top-level
+# Kbuild.
 #
 # Checks, one line each, any problem fails the script:
 #   stages      every stage's tree can be made (a change to the repository
@@ -383,7 +384,7 @@ for p in "${PATCHES[@]}"; do
 		printf '== %s: its new files are in %s/, which MAINTAINERS covers: FILE_PATH_CHANGES ignored\n' \
 			"$(basename "$p")" "$DRV_REL" >>"$SLOG/checkpatch.log"
 	fi
-	out=$(cd "$GIT" && perl scripts/checkpatch.pl --strict --show-types "${ignore[@]}" "$p" 2>&1 || true)
+	out=$(cd "$GIT" && perl scripts/checkpatch.pl --strict --show-types ${ignore[@]+"${ignore[@]}"} "$p" 2>&1 || true)
 	printf '== %s\n%s\n' "$(basename "$p")" "$out" >>"$SLOG/checkpatch.log"
 	read -r e w c < <(printf '%s\n' "$out" |
 		sed -n 's/^total: \([0-9]*\) errors, \([0-9]*\) warnings, \([0-9]*\) checks.*/\1 \2 \3/p' | tail -n1) || true

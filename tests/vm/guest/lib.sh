@@ -94,12 +94,15 @@ near() {
 		nok "$1" "got '$2', want $3 +- $4"; fi
 }
 
+# uptime_s: seconds since boot, as /proc/uptime gives them (10 ms
+# resolution); ms_now: the same in whole milliseconds. For wall times.
+uptime_s() { cut -d' ' -f1 /proc/uptime; }
+ms_now() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
+
 # kmsg_mark NAME: a line "as9888-bench: mark NAME" in the kernel log (at
 # KERN_INFO: not on the console); kmsg_since NAME PATTERN: a kernel message
 # after the last such mark matches PATTERN (grep). Only the messages of
 # what ran since count, however full the log is.
-# ms_now: uptime in milliseconds (10 ms resolution), for wall times
-ms_now() { awk '{ printf "%d", $1 * 1000 }' /proc/uptime; }
 kmsg_mark() { echo "<6>as9888-bench: mark $1" > /dev/kmsg; }
 kmsg_since() {
 	dmesg | awk -v m="as9888-bench: mark $1" 'index($0, m) { n = NR } { l[NR] = $0 }

@@ -46,7 +46,6 @@ reload_driver() {
 		! grep -qE '^as9888_(i2c|core) ' /proc/modules && chip_gone &&
 		load_driver && wait_dev 5
 }
-uptime_s() { cut -d' ' -f1 /proc/uptime; }
 
 t0=$(uptime_s)
 eq "$N_BIND unbind/bind cycles" "$(repeat $N_BIND unbind_bind)" 0

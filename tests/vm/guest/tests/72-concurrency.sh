@@ -39,7 +39,7 @@ echo 1 > $DEV/buffer/enable
 cat /dev/iio:device$N > /tmp/cc.bin &
 READER=$!
 sleep 0.2
-t0=$(cut -d' ' -f1 /proc/uptime)
+t0=$(uptime_s)
 
 # second reader of the character device
 if cat /dev/iio:device$N > /tmp/cc2.bin 2>/tmp/cc2.err; then
@@ -91,7 +91,7 @@ while [ $i -lt 3 ]; do
 done
 wait $Rx $Ry $Rz
 sleep 1
-t1=$(cut -d' ' -f1 /proc/uptime)
+t1=$(uptime_s)
 cat $SIM/stats > /tmp/cc-stats1
 echo 0 > $DEV/buffer/enable
 # the reader drains what is left, then blocks on the empty buffer

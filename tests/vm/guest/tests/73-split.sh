@@ -32,7 +32,6 @@ O=/tmp/split
 mkdir -p $O
 # sv FILE KEY: a counter of a saved copy of the adapter's stats
 sv() { sed -n "s/^$2 //p" "$1"; }
-uptime_s() { cut -d' ' -f1 /proc/uptime; }
 # ts FILE: the timestamps of a capture of 16-byte scans, one a line
 ts() { od -A n -t d8 -v "$1" | awk 'NF == 2 { print $2 }'; }
 # magn_bad FILE: magn scans (x y z + timestamp, 16 bytes) that are not the

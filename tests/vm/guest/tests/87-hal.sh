@@ -19,24 +19,17 @@
 #    (current_timestamp_clock): none later than its arrival at the HAL (an
 #    event stamped on another clock is hours, or years, off). The
 #    issue's "within 20 ms of CLOCK_BOOTTIME", the time from an event's
-#    timestamp to its arrival at the HAL: the median within 20 ms, and
-#    the 99th percentile within 150 ms; a 95th or 99th percentile beyond
-#    20 ms is logged with the late events (when, how late). Not every
-#    event within 20 ms: the guest has one vCPU, a debug kernel (KASAN,
-#    lockdep) under TCG, HZ 250, no preemption on 6.1, and while the
-#    second device starts (its buffer enable, the chip's mode change under
-#    the chip's lock) the running device's samples wait in the kernel:
-#    with the set-up off the reader thread (session 17) up to 5 % of the
-#    events at 100 + 10 Hz came 20-68 ms late, nearly all while the other
-#    device started or stopped (two runs, both kernels side by side at
-#    load 5-9 on 2 cores: p95 3-19 ms, p99 16-55 ms, median 1 ms), and a
-#    busy host stretches that kernel work. The HAL this judgment is for, one that sets a device up
-#    on its reader thread, holds the running device's samples for the
-#    whole set-up: p99 293-406 ms at 100 + 10 Hz (median 1 ms: the median
-#    alone cannot see it), so 150 ms fails it with a margin either way; a
-#    median beyond 20 ms is a HAL holding events back (a watermark above
-#    1, a queue drained late), which load does not make (median 3 ms with
-#    the guest at 80 Hz of 100 beside another guest);
+#    timestamp to its arrival at the HAL: the median within 20 ms (beyond
+#    it, the HAL holds events back: a watermark above 1, a queue drained
+#    late) and the 99th percentile within 150 ms (beyond it, the HAL holds
+#    the running device's samples through the other device's set-up,
+#    which the median cannot see); a 95th or 99th percentile beyond 20 ms
+#    is logged with the late events (when, how late). Not every event
+#    within 20 ms: the guest's one vCPU runs a debug kernel under TCG,
+#    and while the second device starts or stops (its buffer enable, the
+#    chip's mode change under the chip's lock) the running device's
+#    samples wait in the kernel. Figures, judgment: docs/DECISIONS.md,
+#    "Session 17: the set-up off the reader thread; the arrival judged";
 #  - after deactivation both buffers are off and the chip powers down
 #    (runtime suspended, 2 s autosuspend; 30 s is a stall);
 #  - a flush's flush-complete comes after the events before it, within
