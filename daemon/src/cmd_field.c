@@ -71,23 +71,28 @@ int cmd_recalibrate(const struct cli_opts *o)
 /*
  * Through the driver, after both pairs were swapped: the rolled-back
  * record applied, or the swaps undone (the pairs as they were) when the
- * device takes none of it. 0 or -1, said on stderr.
+ * device takes none or only part of it, and the record of before applied
+ * again (a part taken is put back). 0 or -1, said on stderr.
  */
 static int rollback_apply_iio(const struct cli_opts *o, struct record_store *s,
 			      const struct record_rollback *r)
 {
 	char dir[IIO_PATH_MAX], err[SESSION_ERR_LEN];
+	bool found = !iio_find_device(NULL, dir, sizeof(dir));
 
-	if (!iio_find_device(NULL, dir, sizeof(dir)) &&
-	    !iio_restore(o->record_path, dir, false))
+	if (found && !iio_restore(o->record_path, dir, false))
 		return 0;
 	if (record_store_rollback(s, r, true, err, sizeof(err))) {
 		fprintf(stderr, "as9888-calibd: rollback: the record is rolled back but not applied to the device, and could not be put back: %s\n",
 			err);
 		return -1;
 	}
-	fprintf(stderr, "as9888-calibd: rollback: the device did not take %s; nothing changed\n",
-		s->p.previous);
+	if (found && session_restore_iio(s, dir, false))
+		fprintf(stderr, "as9888-calibd: rollback: the device did not take %s; the record's files are as they were, and applying them again failed too (above)\n",
+			s->p.previous);
+	else
+		fprintf(stderr, "as9888-calibd: rollback: the device did not take %s; nothing changed\n",
+			s->p.previous);
 	return -1;
 }
 
