@@ -22,6 +22,8 @@
 
 #include <cmocka.h>
 
+#include "cli.h"
+#include "commands.h"
 #include "fake_sysfs.h"
 #include "iio_cal.h"
 #include "magn_cal.h"
@@ -359,6 +361,71 @@ static void bad_magn_file_keeps_accel(void **state)
 	assert_int_equal(unlink(path), 0);
 }
 
+/* @rec (the example chip's) as a record file @name below the tree's root */
+static void put_record(const struct fake_sysfs *f, const char *name,
+		       struct calib_record *rec)
+{
+	char buf[RECORD_MAX_SIZE];
+	int len;
+
+	memcpy(rec->eeprom, fake_example_eeprom, AS9888_EEPROM_LEN);
+	len = record_format(rec, buf, sizeof(buf));
+	assert_true(len > 0);
+	fake_put_bytes(f->root, name, buf, (size_t)len);
+}
+
+/*
+ * rollback through the driver when the device takes only part of the
+ * rolled-back record (its .magn is of another change, so the
+ * accelerometer's part is applied and the magnetometer's not): the pairs
+ * are swapped back and the record of before applied again, so that the
+ * chip runs what the files say
+ */
+static void rollback_partly_taken_put_back(void **state)
+{
+	static const char *const names[] = { "rb", "rb.previous", "rb.magn",
+					     "rb.magn.previous", "rb.lock" };
+	struct fake_sysfs *f = *state;
+	struct calib_record cur = test_record, prev = test_record;
+	char path[256], before[4][RECORD_MAX_SIZE], buf[RECORD_MAX_SIZE];
+	char *argv[] = { "as9888-calibd", "rollback", "--backend", "iio",
+			 "--record", path, NULL };
+	struct cli_opts o;
+	unsigned int i;
+	int len;
+
+	reset(f, true);
+	put_record(f, "rb", &cur);
+	prev.created -= 100;
+	prev.level_mean_q16[0] += 8 * 65536;
+	put_record(f, "rb.previous", &prev);
+	len = record_magn_format(&magn_example, fake_example_eeprom, cur.created,
+				 buf, sizeof(buf));
+	assert_true(len > 0);
+	fake_put_bytes(f->root, "rb.magn", buf, (size_t)len);
+	/* of neither record: the magnetometer's pair is left by the rollback */
+	len = record_magn_format(&magn_example, fake_example_eeprom,
+				 cur.created - 200, buf, sizeof(buf));
+	assert_true(len > 0);
+	fake_put_bytes(f->root, "rb.magn.previous", buf, (size_t)len);
+	for (i = 0; i < 4; i++)
+		fake_get(f->root, names[i], before[i], sizeof(before[i]));
+	snprintf(path, sizeof(path), "%s/rb", f->root);
+	assert_int_equal(cli_parse(6, argv, &o, buf, sizeof(buf)), 0);
+
+	assert_int_equal(cmd_rollback(&o), EXIT_FAILURE);
+	for (i = 0; i < 4; i++) {
+		fake_get(f->root, names[i], buf, sizeof(buf));
+		assert_string_equal(buf, before[i]);
+	}
+	expect_accel_restored(f);
+	expect(f->magn, "in_magn_x_calibbias", "-100");
+	for (i = 0; i < 5; i++) {
+		snprintf(path, sizeof(path), "%s/%s", f->root, names[i]);
+		unlink(path);
+	}
+}
+
 /*
  * magn-calibrate and the field mode change only the magnetometer's part:
  * that part alone is applied, on the record's chip, never from a record
@@ -470,6 +537,7 @@ int main(void)
 		cmocka_unit_test(device_other_refused),
 		cmocka_unit_test(device_magn_other_chip),
 		cmocka_unit_test(bad_magn_file_keeps_accel),
+		cmocka_unit_test(rollback_partly_taken_put_back),
 		cmocka_unit_test(magn_checked_alone),
 		cmocka_unit_test(split_refuses_out_of_range),
 		cmocka_unit_test(split_recombines),
