@@ -55,7 +55,9 @@ record_add_magn() {
 			echo "record_add_magn: $_ram_rec has no $_ram_k line to replace" >&2
 			return 1
 		fi
-		sed -i "s|^$_ram_k = .*|$_ram_k = ${_ram_kv#*=}|" "$_ram_rec" || return
+		# (the value as sed's replacement: \, | and & taken literally)
+		_ram_v=$(printf '%s\n' "${_ram_kv#*=}" | sed 's/[\\|&]/\\&/g')
+		sed -i "s|^$_ram_k = .*|$_ram_k = $_ram_v|" "$_ram_rec" || return
 	done
 	record_reseal "$_ram_rec"
 }
