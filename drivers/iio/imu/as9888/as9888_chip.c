@@ -20,7 +20,9 @@
  */
 
 #include <linux/array_size.h>
+#include <linux/atomic.h>
 #include <linux/bitfield.h>
+#include <linux/bug.h>
 #include <linux/cleanup.h>
 #include <linux/completion.h>
 #include <linux/delay.h>
@@ -373,13 +375,18 @@ int as9888_check_magn(const struct as9888_raw_sample *s)
  * @s: the sample
  * @ts: timestamp of the sample
  *
- * With chip->lock held and the chip in power-down (the data-ready
- * trigger in its gap: as9888_gap_measure()). One MS write and one burst
- * read of ST1..ST2 on the bus (plus ST1 polls in the unusual case that the
- * sample is late without INT1). On any error the measurement is aborted,
- * leaving the chip in power-down.
+ * With chip->lock held and the chip in power-down: the data-ready
+ * trigger in its gap, which only as9888_gap_measure() waits for, so the
+ * devices measure through that. Here, a sample of the trigger in flight
+ * (a caller that did not wait) is refused with a warning, and so is a
+ * measurement during system sleep, when the supplies are, or are about
+ * to be, off. One MS write and one burst read of ST1..ST2 on the bus
+ * (plus ST1 polls in the unusual case that the sample is late without
+ * INT1). On any error the measurement is aborted, leaving the chip in
+ * power-down.
  *
- * Return: 0 or a negative error number.
+ * Return: 0, -EBUSY during system sleep or outside the trigger's gap, or
+ * a negative error number.
  */
 int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 		   u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts)
@@ -389,6 +396,11 @@ int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 	int ret;
 
 	lockdep_assert_held(&chip->lock);
+
+	if (WARN_ON_ONCE(atomic_read(&chip->trig_state) != AS9888_TRIG_IDLE))
+		return -EBUSY;
+	if (chip->suspended)
+		return -EBUSY;
 
 	ret = as9888_start(chip, mode, men || self_test);
 	if (!ret)

@@ -282,6 +282,7 @@ int as9888_read_sample(struct as9888_chip *chip, struct as9888_raw_sample *s);
 int as9888_check_sample(struct as9888_chip *chip,
 			const struct as9888_raw_sample *s);
 int as9888_check_magn(const struct as9888_raw_sample *s);
+/* In the trigger's gap only: the devices call as9888_gap_measure() */
 int as9888_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 		   u8 mode, bool men, struct as9888_raw_sample *s, s64 *ts);
 int as9888_write_trim(struct as9888_chip *chip, unsigned int reg,

@@ -462,8 +462,9 @@ int as9888_wait_gap(struct as9888_chip *chip)
  * A _raw read, the self-test and a buffer on another trigger measure
  * here. While the data-ready trigger runs for a buffer, wait for the gap
  * between two of its samples (as9888_wait_gap()), then run the
- * measurement (as9888_measure()). During system sleep nothing is
- * measured.
+ * measurement (as9888_measure(), which refuses one during system sleep:
+ * checked after the wait, which drops the lock, as a halted trigger is
+ * idle).
  *
  * Return: 0, -EBUSY during system sleep, or a negative error number.
  */
@@ -475,13 +476,6 @@ int as9888_gap_measure(struct as9888_chip *chip, enum as9888_sensor_id id,
 	ret = as9888_wait_gap(chip);
 	if (ret)
 		return ret;
-
-	/*
-	 * System sleep: the supplies are, or are about to be, off. Checked
-	 * after the wait, which drops the lock (a halted trigger is idle)
-	 */
-	if (chip->suspended)
-		return -EBUSY;
 
 	return as9888_measure(chip, id, mode, men, s, ts);
 }
