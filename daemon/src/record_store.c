@@ -278,7 +278,7 @@ static int check_record_path(const char *path, char *err, size_t errlen)
 	int ret;
 
 	if (!lstat(path, &st) && !S_ISREG(st.st_mode)) {
-		snprintf(err, errlen, "%s is %s, not a record: give --record a path for a regular file",
+		snprintf(err, errlen, "%.300s is %s, not a record: give --record a path for a regular file",
 			 path, S_ISLNK(st.st_mode) ? "a symbolic link" :
 			 S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket");
 		return -EINVAL;
