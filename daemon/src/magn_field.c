@@ -21,7 +21,7 @@
 #include "magn_iio.h"
 #include "magn_session.h"
 #include "request.h"
-#include "session.h"
+#include "record_store.h"
 
 #define MICRO		1000000.0
 /* "m1 m2 m3 a1 a2 a3\n" with %.3f fields */
@@ -280,7 +280,7 @@ int magn_field_store_sample(const char *path, const double m[3],
 static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
 		       const struct magcal_result *r, const char *accel)
 {
-	char err[SESSION_ERR_LEN];
+	char err[RECORD_STORE_ERR_LEN];
 	struct calib_magn next;
 	struct record_store s;
 	int64_t now = (int64_t)time(NULL);
@@ -321,7 +321,7 @@ static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
 
 int cmd_magn_feed(const struct cli_opts *o)
 {
-	char path[PATH_MAX], accel[IIO_PATH_MAX], err[SESSION_ERR_LEN];
+	char path[PATH_MAX], accel[IIO_PATH_MAX], err[RECORD_STORE_ERR_LEN];
 	double s[AS9888_AXES], m[AS9888_AXES];
 	struct magcal_session *fit;
 	struct magn_driver_cal d;
