@@ -17,7 +17,6 @@ struct regmap_config;
 
 /* SPI, datasheet section 1: first byte bit 7 set to read, clear to write */
 #define AS9888_SPI_READ_MSK		BIT(7)
-#define AS9888_SPI_MAX_HZ		5000000
 
 extern const struct regmap_config as9888_i2c_regmap_config;
 extern const struct regmap_config as9888_spi_regmap_config;

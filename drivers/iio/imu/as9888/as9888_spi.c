@@ -2,9 +2,11 @@
 /*
  * ALSEN AS9888 6-axis sensor: SPI driver.
  *
- * Mode 3 (described by firmware), up to 5 MHz, 4-wire. The first byte
- * carries the register address in bits 6:0 and the direction in bit 7
- * (set: read, clear: write); the address auto-increments on bursts.
+ * Mode 3, up to 5 MHz, 4-wire: the mode and the clock are the firmware's to
+ * describe (spi-cpol, spi-cpha, spi-max-frequency, which the binding caps
+ * at 5 MHz). The first byte carries the register address in bits 6:0 and
+ * the direction in bit 7 (set: read, clear: write); the address
+ * auto-increments on bursts.
  */
 
 #include <linux/err.h>
@@ -19,19 +21,6 @@
 static int as9888_spi_probe(struct spi_device *spi)
 {
 	struct regmap *regmap;
-	int ret;
-
-	/*
-	 * Datasheet section 1: at most 5 MHz. The mode (3) is the firmware's
-	 * to describe (spi-cpol, spi-cpha); only the clock is capped here.
-	 */
-	if (spi->max_speed_hz > AS9888_SPI_MAX_HZ) {
-		spi->max_speed_hz = AS9888_SPI_MAX_HZ;
-		ret = spi_setup(spi);
-		if (ret)
-			return dev_err_probe(&spi->dev, ret,
-					     "cannot set up SPI\n");
-	}
 
 	regmap = devm_regmap_init_spi(spi, &as9888_spi_regmap_config);
 	if (IS_ERR(regmap))
