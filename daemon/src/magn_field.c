@@ -286,7 +286,7 @@ static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
 	int64_t now = (int64_t)time(NULL);
 	int ret;
 
-	if (r->status != MAGCAL_OK ||
+	if (!magn_session_done(r) ||
 	    magn_session_to_record(r, now, &next, err, sizeof(err)) ||
 	    !magn_field_should_replace(&rec->magn, &next, now))
 		return 0;

@@ -10,6 +10,12 @@
 #define NT_PER_UT	1000.0
 #define MICRO		1000000.0
 
+bool magn_session_done(const struct magcal_result *fit)
+{
+	return fit->status == MAGCAL_OK &&
+	       fit->coverage >= MAGN_SESSION_COVERAGE;
+}
+
 /* Try a fit; true when its quality is reached */
 static bool try_solve(struct magcal_session *fit, struct magn_session_result *res)
 {
@@ -17,8 +23,7 @@ static bool try_solve(struct magcal_session *fit, struct magn_session_result *re
 		return false;
 	res->solved = true;
 
-	return res->fit.status == MAGCAL_OK &&
-	       res->fit.coverage >= MAGN_SESSION_COVERAGE;
+	return magn_session_done(&res->fit);
 }
 
 /*
@@ -93,12 +98,14 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 		magn_source_sleep(src, MAGN_SESSION_INTERVAL_NS);
 		now = magn_source_now_ns(src);
 	}
-	/* out of time: the last word is a fit of everything kept, good enough for magcal */
-	if (ret == -ETIMEDOUT && magcal_count(fit)) {
-		try_solve(fit, res);
-		if (res->solved && res->fit.status == MAGCAL_OK)
-			ret = 0;
-	}
+	/*
+	 * Out of time: the last word is a fit of everything kept, held to the
+	 * same rule as every fit before it. magcal's own floor (40 %) is not
+	 * enough: the session's 60 % is part of the gate's margin
+	 * (docs/DECISIONS.md), and a fit taken below it can be degrees off.
+	 */
+	if (ret == -ETIMEDOUT && magcal_count(fit) && try_solve(fit, res))
+		ret = 0;
 	if (!ret && progress &&
 	    res->fit.turn_deg >= MAGN_SESSION_TURN_NOTE_DEG) {
 		fprintf(progress, "the magnetometer reads the field turned by %.1f deg against the accelerometer (an asymmetric soft iron): %s\n",
@@ -120,7 +127,8 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 	const struct magcal_result *f = &res->fit;
 	struct magcal_config cfg;
 
-	if (!res->solved || f->status == MAGCAL_NO_COVERAGE) {
+	if (!res->solved || f->status == MAGCAL_NO_COVERAGE ||
+	    (f->status == MAGCAL_OK && f->coverage < MAGN_SESSION_COVERAGE)) {
 		snprintf(buf, size, "not enough orientations covered (%.0f%% in %.0f s, %u samples): turn the device slowly through every direction (a figure eight, then over on every side) and run again",
 			 100 * res->coverage, res->elapsed_ns / (double)NS_PER_S,
 			 res->samples);

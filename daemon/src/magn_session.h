@@ -21,8 +21,9 @@
 #define MAGN_SESSION_SOLVE_EVERY	10
 /*
  * The session goes on past magcal's own minimum (its MAGCAL_OK) until the
- * samples cover this much of the sphere: more directions, a better fit.
- * At the timeout an MAGCAL_OK fit below it is still taken.
+ * samples cover this much of the sphere: more directions, a better fit,
+ * and part of the disturbance gate's margin. The fit at the timeout is
+ * held to it too (magn_session_done()).
  */
 #define MAGN_SESSION_COVERAGE		0.6
 /*
@@ -51,6 +52,9 @@ struct magn_session_result {
 	double coverage;
 	uint64_t elapsed_ns;
 };
+
+/* A fit the session stores: magcal's MAGCAL_OK and MAGN_SESSION_COVERAGE */
+bool magn_session_done(const struct magcal_result *fit);
 
 /*
  * Run a session on @src for at most @timeout_ns, progress lines to

@@ -2,9 +2,11 @@
 # SPDX-License-Identifier: GPL-2.0
 """A magnetometer consumer feeding the daemon (its field mode).
 
-magn_feed.py SOCKET N SEED HX HY HZ: N samples of a board with hard iron
-(HX, HY, HZ) uT and the soft iron below, turned through random
-orientations in a 48 uT field dipping 60 deg, 0.4 uT noise, sent as the
+magn_feed.py SOCKET N SEED HX HY HZ [STEP]: N samples of a board with
+hard iron (HX, HY, HZ) uT and the soft iron below, turned through random
+orientations (with STEP: turned STEP degrees a sample about an axis that
+wanders, as a slow hand turns it) in a 48 uT field dipping 60 deg, 0.4 uT
+noise, sent as the
 driver's output with its calibration at the defaults (calibbias 0,
 calibscale 1: no driver here), one "magn-feed" request each. Prints the
 replies' last fit line; exits 1 when a request is refused, or when the
@@ -33,17 +35,36 @@ def rot(q, v):
             iz * w + iw * -z + ix * -y - iy * -x]
 
 
+def unit(v):
+    norm = math.sqrt(sum(c * c for c in v))
+    return [c / norm for c in v]
+
+
+def qmul(a, b):
+    return [a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+            a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+            a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+            a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]]
+
+
 def main():
     path, n, seed = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
     h = [float(v) for v in sys.argv[4:7]]
+    step = math.radians(float(sys.argv[7])) if len(sys.argv) > 7 else 0
     rng = random.Random(seed)
     dip = math.radians(60)
     earth = [0, 48 * math.cos(dip), -48 * math.sin(dip)]   # world ENU
     last = ""
+    if step:
+        q = unit([rng.gauss(0, 1) for _ in range(4)])
+        axis = unit([rng.gauss(0, 1) for _ in range(3)])
     for _ in range(n):
-        q = [rng.gauss(0, 1) for _ in range(4)]
-        norm = math.sqrt(sum(c * c for c in q))
-        q = [c / norm for c in q]
+        if step:
+            axis = unit([a + rng.gauss(0, 0.2) for a in axis])
+            c, s_ = math.cos(step / 2), math.sin(step / 2)
+            q = unit(qmul([c, s_ * axis[0], s_ * axis[1], s_ * axis[2]], q))
+        else:
+            q = unit([rng.gauss(0, 1) for _ in range(4)])
         # world to sensor: the inverse rotation
         qi = [q[0], -q[1], -q[2], -q[3]]
         b = rot(qi, earth)

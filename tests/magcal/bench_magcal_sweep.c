@@ -6,7 +6,8 @@
  *  - learning time: the session as magn-calibrate runs it (one sample
  *    every MAGN_SESSION_INTERVAL_NS, a fit after every
  *    MAGN_SESSION_SOLVE_EVERY kept samples, done at MAGCAL_OK with
- *    MAGN_SESSION_COVERAGE, at the timeout a last fit of the store), or
+ *    MAGN_SESSION_COVERAGE, at the timeout a last fit of the store held
+ *    to the same rule: magn_session_done()), or
  *    the refusal and its reason;
  *  - for a stored calibration: heading rms/worst over ORIENTATIONS random
  *    orientations (full correction: driver's calibbias/calibscale and the
@@ -55,9 +56,7 @@
 #define STORED_AT		1795392000
 
 /* magn-calibrate's session (daemon/src/magn_session.h) */
-#define INTERVAL_S		0.05
-#define SOLVE_EVERY		10
-#define SESSION_COVERAGE	0.6
+#define INTERVAL_S		(MAGN_SESSION_INTERVAL_NS / 1e9)
 #define TIMEOUT_S		120.0
 #define NOISE_NT		400
 #define WMM_ERROR		0.005
@@ -218,7 +217,7 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 		    const struct magnet *mag, unsigned int seed, double rot_deg,
 		    struct run *out)
 {
-	unsigned int kept = 0, next_solve = SOLVE_EVERY, n, i;
+	unsigned int kept = 0, next_solve = MAGN_SESSION_SOLVE_EVERY, n, i;
 	unsigned int total = (unsigned int)(TIMEOUT_S / INTERVAL_S);
 	unsigned int dist_at = mag ? (unsigned int)(mag->start_s / INTERVAL_S) :
 				     0;
@@ -267,10 +266,9 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 		if (magcal_add(s, mut, rd.accel_g) > 0)
 			kept++;
 		if (kept >= next_solve) {
-			next_solve = kept + SOLVE_EVERY;
+			next_solve = kept + MAGN_SESSION_SOLVE_EVERY;
 			magcal_solve(s, &r);
-			if (r.status == MAGCAL_OK &&
-			    r.coverage >= SESSION_COVERAGE)
+			if (magn_session_done(&r))
 				break;
 		}
 	}
@@ -286,7 +284,7 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 	out->turn_deg = r.turn_deg;
 	out->turn_trusted = r.turn_trusted;
 	out->learn_s = (n + (n < total)) * INTERVAL_S;
-	out->stored = r.status == MAGCAL_OK && stack_from(&c, &r, &st);
+	out->stored = magn_session_done(&r) && stack_from(&c, &r, &st);
 	if (out->stored) {
 		struct score sc[CORR_COUNT];
 
@@ -318,7 +316,9 @@ static void print_run(unsigned int b, const struct earth *e, double speed,
 			 mag->peak_ut, mag->dur_s, mag->start_s);
 	printf("%5u %4.0f/%+3.0f %5.1f %-14s %-32s %6.1f %5.2f %5.2f %5.2f",
 	       b, e->f_ut, e->incl_deg, speed, dist,
-	       r->stored ? "stored" : magcal_status_str(r->status),
+	       r->stored ? "stored" :
+	       r->status == MAGCAL_OK ? "too little covered" :
+	       magcal_status_str(r->status),
 	       r->learn_s, r->coverage, r->drift_ut, r->dip_drift_deg);
 	if (r->stored)
 		printf(" %6.2f %6.2f %6.2f", r->sc.head_rms, r->sc.head_worst,
