@@ -53,12 +53,12 @@ src=$top/daemon/src
 # the sources each target is built from, besides tests/fuzz/TARGET_fuzz.c
 sources() {
 	case $1 in
-	record|record_crc) echo "$src/record.c ${calib[*]}" ;;
+	record|record_crc) echo "$src/common/record.c ${calib[*]}" ;;
 	unit) echo "$top/tests/model/as9888_unit.c" ;;
-	request) echo "$src/request.c" ;;
-	uevent) echo "$src/uevent.c $src/uevent_filter.c" ;;
+	request) echo "$src/common/request.c" ;;
+	uevent) echo "$src/service/uevent.c $src/service/uevent_filter.c" ;;
 	iio_scan) echo "$top/lib/iio/iio_scan.c" ;;
-	iio_value) echo "$src/iio_value.c ${calib[*]}" ;;
+	iio_value) echo "$src/chip/iio_value.c ${calib[*]}" ;;
 	hal_text) echo "$top/hal/src/hal_config.c $top/hal/src/hal_layout.c $top/hal/src/hal_attr.c $top/hal/src/hal_stream.c $top/lib/iio/*.c" ;;
 	*) echo "fuzz: unknown target $1 (${all[*]})" >&2; return 1 ;;
 	esac

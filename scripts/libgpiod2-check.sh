@@ -3,7 +3,7 @@
 #
 # libgpiod2-check.sh
 #
-# Checks that the daemon's GPIO unit (daemon/src/gpio.c, with
+# Checks that the daemon's GPIO unit (daemon/src/chip/gpio.c, with
 # -DAS9888_GPIOD_V2) and the raw backend build against libgpiod 2.x, which
 # Debian 12 does not have (bookworm ships 1.6.3, the default build).
 #
@@ -179,8 +179,8 @@ compile() {
 		die "$unit does not compile against libgpiod $VERSION (flags: ${CFLAGS[*]} $*)"
 	log "compiled $unit${*:+ ($*)}"
 }
-compile daemon/src/gpio.c
-compile daemon/src/backend_raw.c -Wno-unused-parameter
+compile daemon/src/chip/gpio.c
+compile daemon/src/chip/backend_raw.c -Wno-unused-parameter
 compile tests/gpio/gpio_v2_smoke.c
 gcc -o "$OUT/gpio_v2_smoke" "$OUT/gpio_v2_smoke.o" "$OUT/gpio.o" \
 	"$PREFIX/lib/libgpiod.a" ||

@@ -25,7 +25,7 @@
 #     without libgpiod (its stub), as on a musl board without it.
 #  4. meson setup + ninja in $AS9888_BUILD/musl; checks that the daemon's
 #     interpreter is musl's and that close_range() was not found (the
-#     /proc/self/fd fallback of daemon/src/fd_close.c is what runs).
+#     /proc/self/fd fallback of daemon/src/common/fd_close.c is what runs).
 #  5. meson test on that build: every test of the suite runs there (none
 #     needs glibc). Prints "musl: N passed, N failed" from the suite's own
 #     log; exit 1 when any test failed or none ran.

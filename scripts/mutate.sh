@@ -5,7 +5,7 @@
 #
 # Each mutant of tests/mutate/mutants.txt (default: all; or the ones named)
 # changes one expression of the shared arithmetic (the driver's
-# as9888_calib.c, lib/calib/), of the factory-test engine (daemon/src/ftest*)
+# as9888_calib.c, lib/calib/), of the factory-test engine (daemon/src/ftest/)
 # or of the magnetometer's fit (lib/magcal/). The suite includes
 # calib-kunit, the driver's KUnit cases built as a program, so a mutant of
 # the shared arithmetic also meets KUnit's hand-computed values. For each

@@ -7,9 +7,9 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "cli.h"
-#include "commands.h"
-#include "session.h"
+#include "commands/cli.h"
+#include "commands/commands.h"
+#include "commands/session.h"
 
 #define EXIT_USAGE	2
 #define ERR_LEN		512

@@ -8,7 +8,7 @@
 #ifndef AS9888_TEST_MAGN_EXAMPLE_H
 #define AS9888_TEST_MAGN_EXAMPLE_H
 
-#include "record.h"
+#include "common/record.h"
 
 static const struct calib_magn magn_example = {
 	.present = true,

@@ -27,7 +27,7 @@ import tempfile
 import time
 
 PLAN = 13
-BUDGET = 8              # RECORD_BUDGET_BURST (daemon/src/record_budget.h)
+BUDGET = 8              # RECORD_BUDGET_BURST (daemon/src/store/record_budget.h)
 LOG_LINES_PER_S = 5     # LOG_LIMIT_LINES a LOG_LIMIT_WINDOW_MS of 1 s
 OPERATOR_GID = 100      # "users" on Debian; any gid works, none is created
 CONSUMER = 4241

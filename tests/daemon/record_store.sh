@@ -1,7 +1,7 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-2.0
 #
-# The record and <record>.magn are one generation (daemon/src/record_store.h):
+# The record and <record>.magn are one generation (daemon/src/store/record_store.h):
 # both carry the record's "created", and a .magn of another change of the
 # record is never used with it. A crash between the two pairs' changes
 # (magn-calibrate's save: the magnetometer's pair first; rollback: the

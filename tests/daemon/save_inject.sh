@@ -39,7 +39,7 @@ not_ok() { n=$((n + 1)); fail=$((fail + 1)); echo "not ok $n - $*"; }
 rec1=$rec
 rec=$work/pair/cal
 mkdir -p "$work/pair"
-# The record and its previous one as a pair (daemon/src/record_pair.h):
+# The record and its previous one as a pair (daemon/src/store/record_pair.h):
 # rollback, recalibrate, factory-test and magn-calibrate are each
 # interrupted at every
 # system call that touches the record's files (a SIGKILL, standing in for

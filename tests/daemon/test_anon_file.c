@@ -28,10 +28,10 @@
 
 #include <cmocka.h>
 
-#include "anon_file.h"
-#include "cli.h"
-#include "request.h"
-#include "request_reply.h"
+#include "common/anon_file.h"
+#include "commands/cli.h"
+#include "common/request.h"
+#include "service/request_reply.h"
 
 struct dir {
 	char path[64];

@@ -23,8 +23,8 @@
 
 #include "as9888_sim.h"
 #include "as9888_unit.h"
-#include "backend_sim.h"
-#include "ftest.h"
+#include "chip/backend_sim.h"
+#include "ftest/ftest.h"
 
 #define RUNS		300
 #define NOISE_LSB	"2"

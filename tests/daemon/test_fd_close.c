@@ -19,7 +19,7 @@
 
 #include <cmocka.h>
 
-#include "fd_close.h"
+#include "common/fd_close.h"
 
 /* Descriptors opened by the test: more than one getdents64 read lists */
 #define SPREAD 600

@@ -14,9 +14,9 @@
 
 #include "as9888_sim.h"
 #include "as9888_unit.h"
-#include "backend_sim.h"
-#include "ftest.h"
-#include "transport.h"
+#include "chip/backend_sim.h"
+#include "ftest/ftest.h"
+#include "chip/transport.h"
 
 /*
  * A transport between the engine and the simulator that changes one value

@@ -34,7 +34,7 @@
 #include <cmocka.h>
 
 #include "fake_sysfs.h"
-#include "ftest.h"
+#include "ftest/ftest.h"
 
 #define SCAN	"scan_elements"
 

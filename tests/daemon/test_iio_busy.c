@@ -25,7 +25,7 @@
 
 #include <cmocka.h>
 
-#include "iio_busy.h"
+#include "chip/iio_busy.h"
 
 #define CHARDEV		"/dev/iio:device0"
 /* Longer than any wait below needs on a busy machine */

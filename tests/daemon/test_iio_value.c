@@ -16,7 +16,7 @@
 
 #include <cmocka.h>
 
-#include "iio_value.h"
+#include "chip/iio_value.h"
 
 #define ARRAY_LEN(a)	(sizeof(a) / sizeof((a)[0]))
 

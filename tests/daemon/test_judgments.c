@@ -26,9 +26,9 @@
 
 #include "as9888_regs.h"
 #include "as9888_unit.h"
-#include "backend_sim.h"
-#include "ftest.h"
-#include "ftest_print.h"
+#include "chip/backend_sim.h"
+#include "ftest/ftest.h"
+#include "ftest/ftest_print.h"
 
 #define ANY	-1
 #define PASS1	2

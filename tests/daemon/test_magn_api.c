@@ -23,7 +23,7 @@
 #include <cmocka.h>
 
 #include "as9888_magn.h"
-#include "record.h"
+#include "common/record.h"
 
 static const uint8_t example[AS9888_EEPROM_LEN] = {
 	0x9a, 0x71, 0x15, 0x5c, 0x80, 0x85, 0x7b, 0x1c, 0x63, 0xa2, 0x38,

@@ -17,10 +17,10 @@
 
 #include <cmocka.h>
 
-#include "magn_field.h"
-#include "magn_session.h"
+#include "commands/magn_field.h"
+#include "magn/magn_session.h"
 #include "magn_example.h"
-#include "request.h"
+#include "common/request.h"
 
 
 static void replace_rules(void **state)

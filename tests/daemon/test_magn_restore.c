@@ -22,15 +22,15 @@
 
 #include <cmocka.h>
 
-#include "cli.h"
-#include "commands.h"
+#include "commands/cli.h"
+#include "commands/commands.h"
 #include "fake_sysfs.h"
-#include "iio_cal.h"
-#include "magn_cal.h"
-#include "magn_iio.h"
+#include "chip/iio_cal.h"
+#include "common/magn_cal.h"
+#include "chip/magn_iio.h"
 #include "magn_example.h"
-#include "record.h"
-#include "session.h"
+#include "common/record.h"
+#include "commands/session.h"
 
 static const struct calib_record test_record = {
 	.dac = { 0x0f, 0x8e, 0x8c },

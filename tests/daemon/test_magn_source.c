@@ -22,9 +22,9 @@
 
 #include <cmocka.h>
 
-#include "backend_sim.h"
+#include "chip/backend_sim.h"
 #include "fake_sysfs.h"
-#include "magn_source.h"
+#include "magn/magn_source.h"
 
 static struct calib_record sim_record(const uint8_t *eeprom)
 {

@@ -17,8 +17,8 @@
 
 #include <cmocka.h>
 
-#include "atomic_file.h"
-#include "record.h"
+#include "store/atomic_file.h"
+#include "common/record.h"
 
 static const u8 example[AS9888_EEPROM_LEN] = {
 	0x9a, 0x71, 0x15, 0x5c, 0x80, 0x85, 0x7b, 0x1c, 0x63, 0xa2, 0x38,

@@ -20,8 +20,8 @@
 #include "as9888_regs.h"
 #include "as9888_sim.h"
 #include "as9888_unit.h"
-#include "backend_sim.h"
-#include "ftest.h"
+#include "chip/backend_sim.h"
+#include "ftest/ftest.h"
 
 /*
  * A transport that stalls: after the @stall_at-th MS write that starts a

@@ -22,8 +22,8 @@
 
 #include <cmocka.h>
 
-#include "cli.h"
-#include "service_socket.h"
+#include "commands/cli.h"
+#include "service/service_socket.h"
 
 struct fixture {
 	char dir[64];

@@ -20,8 +20,8 @@
 #include <cmocka.h>
 
 #include "as9888_unit.h"
-#include "backend_sim.h"
-#include "ftest.h"
+#include "chip/backend_sim.h"
+#include "ftest/ftest.h"
 
 #define SEEDS		40
 #define E_LSB		0.25

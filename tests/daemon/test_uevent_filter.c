@@ -16,8 +16,8 @@
 
 #include <cmocka.h>
 
-#include "uevent.h"
-#include "uevent_filter.h"
+#include "service/uevent.h"
+#include "service/uevent_filter.h"
 
 static int sv[2];
 

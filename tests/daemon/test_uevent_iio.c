@@ -21,10 +21,10 @@
 #include <cmocka.h>
 
 #include "fake_sysfs.h"
-#include "iio_cal.h"
-#include "record.h"
-#include "session.h"
-#include "uevent.h"
+#include "chip/iio_cal.h"
+#include "common/record.h"
+#include "commands/session.h"
+#include "service/uevent.h"
 
 static void parse_iio_add(void **state)
 {

@@ -5,7 +5,7 @@
  * and integers. Readings and integers accepted are within their limits.
  */
 #include "fuzz_text.h"
-#include "iio_value.h"
+#include "chip/iio_value.h"
 
 #define READING_LIMIT_Q8	(8192 * 256)
 

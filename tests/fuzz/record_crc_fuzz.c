@@ -9,7 +9,7 @@
 #include <stdio.h>
 
 #include "fuzz_text.h"
-#include "record.h"
+#include "common/record.h"
 
 #define CRC_LINE	"crc32 = "
 

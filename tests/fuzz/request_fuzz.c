@@ -8,7 +8,7 @@
 #include <stdio.h>
 
 #include "fuzz_text.h"
-#include "request.h"
+#include "common/request.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

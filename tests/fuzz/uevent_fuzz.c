@@ -5,7 +5,7 @@
  * parsed is NUL-terminated within its buffer.
  */
 #include "fuzz_text.h"
-#include "uevent.h"
+#include "service/uevent.h"
 
 #define TERMINATED(f)	(memchr((f), '\0', sizeof(f)) != NULL)
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * Smoke test of daemon/src/gpio.c built against libgpiod 2.x
+ * Smoke test of daemon/src/chip/gpio.c built against libgpiod 2.x
  * (scripts/libgpiod2-check.sh): prints the library version, then checks
  * that opening a line on a chip that does not exist fails with a message
  * naming the chip, by name and by path. Needs no GPIO hardware.
@@ -10,7 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "gpio.h"
+#include "chip/gpio.h"
 
 static int expect_open_fails(const char *chip)
 {

@@ -33,7 +33,7 @@
 #include "fake_sysfs.h"
 #include "hal_test_tree.h"
 #include "magn_example.h"
-#include "record.h"
+#include "common/record.h"
 
 #define MAX_EVENTS	4096
 #define STALL_S		10

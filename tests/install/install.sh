@@ -114,7 +114,7 @@ check "Android init .rc (init's grammar), SELinux file_contexts and the daemon: 
 import re, sys
 src = sys.argv[1]
 name = re.search(r'#define ANDROID_SOCKET_NAME\s+"(\w+)"',
-                 open(src + "/daemon/src/service_socket.h").read()).group(1)
+                 open(src + "/daemon/src/service/service_socket.h").read()).group(1)
 # init's sections ("on", "service", "import" at the start of a line) and
 # the service options used here, indented below a service
 options = {"class", "socket", "user", "group", "capabilities", "task_profiles",

@@ -47,15 +47,15 @@
 #include <cmocka.h>
 
 #include "magcal.h"
-#include "magn_cal.h"
-#include "magn_session.h"
+#include "common/magn_cal.h"
+#include "magn/magn_session.h"
 #include "magsim.h"
-#include "record.h"
+#include "common/record.h"
 
 /* when the sweep's calibrations are "stored" (any time: it is not judged) */
 #define STORED_AT		1795392000
 
-/* magn-calibrate's session (daemon/src/magn_session.h) */
+/* magn-calibrate's session (daemon/src/magn/magn_session.h) */
 #define INTERVAL_S		(MAGN_SESSION_INTERVAL_NS / 1e9)
 #define TIMEOUT_S		120.0
 #define NOISE_NT		400

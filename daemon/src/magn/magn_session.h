@@ -1,0 +1,86 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * The explicit calibration session of magn-calibrate: samples from a
+ * source (magn_source.h) fed to the fit library (lib/magcal) while the
+ * user turns the device, progress shown, until the fit's quality is
+ * reached or the time is up.
+ */
+#ifndef AS9888_MAGN_SESSION_H
+#define AS9888_MAGN_SESSION_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "magcal.h"
+#include "magn/magn_source.h"
+#include "common/record.h"
+
+/* One sample every 50 ms: 20 Hz, a turning hand moves a few degrees */
+#define MAGN_SESSION_INTERVAL_NS	50000000ULL
+/* A fit is tried after every this many newly kept samples */
+#define MAGN_SESSION_SOLVE_EVERY	10
+/*
+ * The session goes on past magcal's own minimum (its MAGCAL_OK) until the
+ * samples cover this much of the sphere: more directions, a better fit,
+ * and part of the disturbance gate's margin. The fit at the timeout is
+ * held to it too (magn_session_done()).
+ */
+#define MAGN_SESSION_COVERAGE		0.6
+/*
+ * A fit whose magnetometer is turned by this much against the
+ * accelerometer (magcal_result turn_deg: an asymmetric soft iron, which
+ * the record cannot hold) is stored with a note saying so
+ */
+#define MAGN_SESSION_TURN_NOTE_DEG	0.5
+/* Progress is printed after every this many newly kept samples */
+#define MAGN_SESSION_PROGRESS_EVERY	20
+
+/**
+ * struct magn_session_result - how a session ended
+ * @fit:	the last fit (valid when @solved)
+ * @solved:	a fit was made at all
+ * @samples:	measurements taken
+ * @overflows:	measurements the magnetometer overflowed in (skipped)
+ * @coverage:	the coverage when it ended
+ * @elapsed_ns:	how long it ran, on the source's clock
+ */
+struct magn_session_result {
+	struct magcal_result fit;
+	bool solved;
+	unsigned int samples;
+	unsigned int overflows;
+	double coverage;
+	uint64_t elapsed_ns;
+};
+
+/* A fit the session stores: magcal's MAGCAL_OK and MAGN_SESSION_COVERAGE */
+bool magn_session_done(const struct magcal_result *fit);
+
+/*
+ * Run a session on @src for at most @timeout_ns, progress lines to
+ * @progress (NULL: none). @earth_ut: the site's field strength, uT, the
+ * calibrated magnitude (magcal's reference_field_ut), or 0: none. 0 when the fit's quality was reached (@res->fit
+ * with status MAGCAL_OK), -ETIMEDOUT when the time ran out first (@res
+ * says how far it got), other -errno when the source failed (why in
+ * @err).
+ */
+int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
+		     double earth_ut, FILE *progress, struct magn_session_result *res,
+		     char *err, size_t errlen);
+
+/*
+ * Why a session that ran out of time failed, for the user, with what to
+ * do about it
+ */
+void magn_session_why(const struct magn_session_result *res, char *buf,
+		      size_t size);
+
+/*
+ * The record's form of a successful fit, learned at @now. 0, or -ERANGE
+ * with why in @err when it is beyond what a record keeps (the driver's
+ * calibscale range 0.5..2, a hard iron beyond +-1000 uT).
+ */
+int magn_session_to_record(const struct magcal_result *fit, int64_t now,
+			   struct calib_magn *m, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,72 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Where magn-calibrate's samples come from: one measurement of the
+ * magnetometer (in uT, without any calibration: what the fit needs) and
+ * of the accelerometer (the direction of gravity, for the coverage of
+ * orientations), either from the chip's registers (the simulator, the raw
+ * bus) or from the bound driver (its buffers, or its sysfs attributes).
+ */
+#ifndef AS9888_MAGN_SOURCE_H
+#define AS9888_MAGN_SOURCE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "as9888_calib.h"
+#include "common/record.h"
+#include "chip/transport.h"
+
+/**
+ * struct magn_reading - one sample
+ * @field_ut:	the magnetic field, sensor frame, uT, uncalibrated
+ *		(the driver's calibbias/calibscale, if any, taken out)
+ * @accel:	the accelerometer's reading, LSB: gravity's direction
+ * @t_ns:	when, on the source's clock
+ */
+struct magn_reading {
+	double field_ut[AS9888_AXES];
+	double accel[AS9888_AXES];
+	uint64_t t_ns;
+};
+
+struct magn_source;
+
+/*
+ * Measure through the registers behind @t (taken over: closed with the
+ * source), after step 1 of the application note with @rec's DAC values
+ * (the chip's EEPROM must be @rec's). 0 or -errno with why in @err.
+ */
+int magn_source_open_chip(struct transport *t, const struct calib_record *rec,
+			  struct magn_source **out, char *err, size_t errlen);
+
+/*
+ * Measure through the driver, the driver's own magnetometer calibration
+ * undone, from the devices at @magn_dir and @accel_dir: the field and the
+ * acceleration of one measurement from a buffered capture of both on the
+ * shared data-ready trigger (magn_capture.h), or where that cannot be had
+ * (another program holds a buffer, no trigger) or stops, in_magn_*_raw and
+ * in_accel_*_raw read axis by axis (each read a measurement of its own).
+ * Which, and why not the capture, is said on @log (may be NULL). The
+ * EEPROM (NVMEM) must equal @eeprom. 0 or -errno with why in @err.
+ */
+int magn_source_open_iio(const char *accel_dir, const char *magn_dir,
+			 const uint8_t eeprom[AS9888_EEPROM_LEN], FILE *log,
+			 struct magn_source **out, char *err, size_t errlen);
+
+/*
+ * One sample. 0; -ERANGE when the magnetometer overflowed (a strong
+ * magnet: no sample, try again); other -errno with why in @err.
+ */
+int magn_source_read(struct magn_source *s, struct magn_reading *r,
+		     char *err, size_t errlen);
+
+/* Wait @ns on the source's clock (virtual on a virtual-clock simulator) */
+void magn_source_sleep(struct magn_source *s, uint64_t ns);
+
+/* The source's clock, ns */
+uint64_t magn_source_now_ns(struct magn_source *s);
+
+void magn_source_close(struct magn_source *s);
+
+#endif
