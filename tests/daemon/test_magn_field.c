@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "commands/magn_field.h"
+#include "common/magn_cal.h"
 #include "magn/magn_session.h"
 #include "magn_example.h"
 #include "common/request.h"
@@ -99,18 +100,19 @@ static void reference_from_record(void **state)
 
 static void uncorrect_inverts_driver(void **state)
 {
-	static const int32_t bias[3] = { -100, 149, -341 };
-	static const int32_t scale[3] = { 1020000, 985000, 1003000 };
+	static const struct magn_driver_cal d = {
+		.calibbias = { -100, 149, -341 },
+		.calibscale_micro = { 1020000, 985000, 1003000 },
+	};
 	static const double s[3] = { 0.3, 0.3 * 261 / 256, 0.3 * 251 / 256 };
-	double m[3] = { 12.5, -300.25, 77 }, y[3], back[3];
+	double m[3] = { 12.5, -300.25, 77 }, y;
 	int i;
 
 	(void)state;
-	for (i = 0; i < 3; i++)
-		y[i] = scale[i] / 1e6 * (m[i] + bias[i] * s[i]);
-	magn_field_uncorrect(y, bias, scale, s, back);
-	for (i = 0; i < 3; i++)
-		assert_true(fabs(back[i] - m[i]) < 1e-9);
+	for (i = 0; i < 3; i++) {
+		y = d.calibscale_micro[i] / 1e6 * (m[i] + d.calibbias[i] * s[i]);
+		assert_true(fabs(magn_uncorrect_driver(&d, i, y, s[i]) - m[i]) < 1e-9);
+	}
 }
 
 static void feed_line(void **state)

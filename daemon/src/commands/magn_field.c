@@ -81,18 +81,6 @@ bool magn_field_should_replace(const struct calib_magn *cur,
 	return false;
 }
 
-void magn_field_uncorrect(const double y[AS9888_AXES],
-			  const int32_t bias[AS9888_AXES],
-			  const int32_t scale_micro[AS9888_AXES],
-			  const double s[AS9888_AXES], double m[AS9888_AXES])
-{
-	int i;
-
-	/* y = D (m + c s): magn_cal.h */
-	for (i = 0; i < AS9888_AXES; i++)
-		m[i] = y[i] / (scale_micro[i] / MICRO) - bias[i] * s[i];
-}
-
 /* What the driver's attributes hold now (defaults without a driver or them) */
 static void driver_state(const struct calib_record *rec,
 			 struct magn_driver_cal *d, char *accel, size_t size)
@@ -329,7 +317,7 @@ int cmd_magn_feed(const struct cli_opts *o)
 	struct magcal_result r;
 	struct record_store st;
 	struct calib_record rec;
-	int ret;
+	int i, ret;
 
 	if (!o->magn_feed)
 		return EXIT_FAILURE;
@@ -338,7 +326,8 @@ int cmd_magn_feed(const struct cli_opts *o)
 	rec = st.rec;
 	driver_state(&rec, &d, accel, sizeof(accel));
 	magn_scale_ut(rec.eeprom, s);
-	magn_field_uncorrect(o->magn_feed, d.calibbias, d.calibscale_micro, s, m);
+	for (i = 0; i < AS9888_AXES; i++)
+		m[i] = magn_uncorrect_driver(&d, i, o->magn_feed[i], s[i]);
 	/* a calibration given the site's field keeps it through refinements */
 	magcal_config_default(&cfg);
 	cfg.reference_field_ut = magn_field_reference_ut(&rec.magn);

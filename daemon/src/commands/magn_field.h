@@ -73,14 +73,4 @@ int magn_field_store_sample(const char *path, const double m[AS9888_AXES],
 			    const double a[AS9888_AXES],
 			    struct magcal_session *fit, char *err, size_t errlen);
 
-/*
- * The uncalibrated field (uT) from the driver's output @y (uT) when its
- * attributes hold calibbias @bias and calibscale @scale_micro, with @s uT
- * per LSB
- */
-void magn_field_uncorrect(const double y[AS9888_AXES],
-			  const int32_t bias[AS9888_AXES],
-			  const int32_t scale_micro[AS9888_AXES],
-			  const double s[AS9888_AXES], double m[AS9888_AXES]);
-
 #endif

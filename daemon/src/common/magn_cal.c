@@ -99,6 +99,13 @@ void magn_affine(const double a[AS9888_AXES][AS9888_AXES],
 	}
 }
 
+double magn_uncorrect_driver(const struct magn_driver_cal *d, int axis,
+			     double y_ut, double scale_ut)
+{
+	return y_ut / (d->calibscale_micro[axis] / MICRO) -
+	       d->calibbias[axis] * scale_ut;
+}
+
 void magn_correct_driver(const struct magn_user_cal *u,
 			 const double y[AS9888_AXES], double f[AS9888_AXES])
 {

@@ -84,6 +84,14 @@ void magn_user_split(const struct calib_magn *m,
 		     const uint8_t eeprom[AS9888_EEPROM_LEN],
 		     const struct magn_driver_cal *d, struct magn_user_cal *u);
 
+/*
+ * The field before the driver's calibration on @axis: m = y / D - c * s
+ * from the driver's output @y_ut (uT) with @d's calibbias and calibscale
+ * and @scale_ut uT per LSB (the inverse of y = D * (m + c * s))
+ */
+double magn_uncorrect_driver(const struct magn_driver_cal *d, int axis,
+			     double y_ut, double scale_ut);
+
 /* f = R * (y - e): the calibrated field from the driver's output @y (uT) */
 void magn_correct_driver(const struct magn_user_cal *u,
 			 const double y[AS9888_AXES], double f[AS9888_AXES]);

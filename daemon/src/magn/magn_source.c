@@ -244,9 +244,8 @@ static int read_raw(const char *dir, const char *name, long max, long *v,
 /* A reading of the driver's, (count + calibbias) * calibscale, as uT */
 static double driver_ut(const struct magn_source *s, int axis, long v)
 {
-	double d = s->driver.calibscale_micro[axis] / MICRO;
-
-	return (v / d - s->driver.calibbias[axis]) * s->scale_ut[axis];
+	return magn_uncorrect_driver(&s->driver, axis, v * s->scale_ut[axis],
+				     s->scale_ut[axis]);
 }
 
 /*
