@@ -8,7 +8,9 @@ Usage: layering-check.py [ROOT]     (ROOT: the checkout; default: this one)
    A file may include headers of its own folder and of folders below it,
    never above; an include of a daemon header names its folder
    ("store/record_pair.h"), so the include line itself shows the layer.
-   main.c, in daemon/src itself, is above every folder.
+   main.c, in daemon/src itself, is above every folder. `chip/` and
+   `store/` are beside each other: neither includes the other. An
+   include with a ".." in it is refused (it would hide its layer).
 2. No include circle between units anywhere in the C code we write
    (daemon, drivers, HAL, libraries). A unit is a .c file with its
    header of the same name; a header "X_internal.h" belongs to unit X
@@ -25,7 +27,10 @@ LAYERS = ['common', 'chip', 'store', 'ftest', 'magn', 'commands', 'service']
 DAEMON_SRC = 'daemon/src'
 # Where units are looked for circles: the project's own C code
 CIRCLE_ROOTS = ['daemon', 'drivers/iio/imu/as9888', 'hal', 'lib']
-INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+# "name" and <name>: an angle include can reach daemon/src too (-I)
+INCLUDE = re.compile(r'^\s*#\s*include\s+["<]([^">]+)[">]', re.M)
+# Layers beside each other: (includer, included) refused both ways
+APART = {('store', 'chip'), ('chip', 'store')}
 
 
 def c_files(root, top):
@@ -63,6 +68,9 @@ def check_layers(root):
             bad.append(f'{f}: in no layer (daemon/src/README.md lists them)')
             continue
         for line, inc in includes(root, f):
+            if '..' in inc.split('/'):
+                bad.append(f'{f}:{line}: "{inc}": no ".." in an include (name the folder)')
+                continue
             folder = inc.split('/')[0] if '/' in inc else None
             if folder is None:
                 if inc in by_name:
@@ -75,6 +83,9 @@ def check_layers(root):
             elif LAYERS.index(folder) > rank:
                 bad.append(f'{f}:{line}: "{inc}" is above this file\'s layer '
                            f'({folder} over {LAYERS[rank] if rank < len(LAYERS) else "main"})')
+            elif rank < len(LAYERS) and (LAYERS[rank], folder) in APART:
+                bad.append(f'{f}:{line}: "{inc}": {LAYERS[rank]}/ and {folder}/ '
+                           'are beside each other, neither includes the other')
     return bad
 
 
@@ -158,7 +169,8 @@ def main():
         print(f'layering-check: {b}', file=sys.stderr)
     if bad:
         return 1
-    print(f'layering-check: {DAEMON_SRC} keeps its layers ({" < ".join(LAYERS)} < main.c); '
+    print(f'layering-check: {DAEMON_SRC} keeps its layers ({" < ".join(LAYERS)} < main.c; '
+          f'{" and ".join(sorted(APART)[0])} apart); '
           f'no include circle in {", ".join(CIRCLE_ROOTS)}')
     return 0
 

@@ -502,6 +502,7 @@ static void *reader_thread(void *arg)
 	unsigned long gen[2];
 	int64_t deadline;
 	char drain[64];
+	bool ok;
 	int timeout, i, n;
 
 	pthread_mutex_lock(&h->lock);
@@ -548,7 +549,11 @@ static void *reader_thread(void *arg)
 			if (!(pfd[i + 1].revents & (POLLIN | POLLERR | POLLHUP)) ||
 			    gen[i] != h->gen[i])
 				continue;
-			if (!read_stream(h, streams[i], i) || (pfd[i + 1].revents & (POLLERR | POLLHUP)))
+			ok = read_stream(h, streams[i], i);
+			/* restarted while it was read (its posts drop the lock) */
+			if (gen[i] != h->gen[i])
+				continue;
+			if (!ok || (pfd[i + 1].revents & (POLLERR | POLLHUP)))
 				/* the device went away: stop it rather than spin */
 				hal_stream_stop(streams[i]);
 		}

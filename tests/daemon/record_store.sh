@@ -19,7 +19,7 @@ trap 'rm -rf "$work"' EXIT
 export ASAN_OPTIONS=detect_leaks=1
 # shellcheck source=../lib/tap.sh
 . "$here/../lib/tap.sh"
-tap_plan 9
+tap_plan 12
 TAP_SHOW="$work/err $work/out"
 
 rec=$work/state/calibration
@@ -58,13 +58,15 @@ cp "$work/g1.previous" "$rec.previous"
 cp "$work/g2.magn" "$rec.magn"
 cp "$work/g2.magn.previous" "$rec.magn.previous"
 run show --record "$rec"
-check "show: a .magn of another change of the record is not used, said" eval '
-	[ $rc -eq 1 ] && says "of another change of the record" err &&
-	says "is not used" err && [ ! -s "$work/out" ]'
+check "show (no lock): the .magn a change away is not used, its previous (the record's) is, read-only, said" eval '
+	[ $rc -eq 0 ] && says "a change away from .* (an interrupted change of both)" err &&
+	says "calibration.magn.previous, the record.s, is used" err && says "driver calibbias" out &&
+	same .magn g2.magn && same .magn.previous g2.magn.previous'
 # shellcheck disable=SC2086
 run restore $sim --record "$rec"
-check "restore on the chip's registers: the accelerometer's part applied (exit 0), the .magn said" eval '
-	[ $rc -eq 0 ] && says "of another change of the record" err'
+check "restore (no lock, as at boot): the same, exit 0, the files as they were" eval '
+	[ $rc -eq 0 ] && says "the record.s, is used" err && same .magn g2.magn &&
+	same .magn.previous g2.magn.previous'
 # shellcheck disable=SC2086
 run rollback $sim --record "$rec"
 check "the next command with the lock puts the magnetometer's pair in step (swapped, both kept), said" eval '
@@ -104,5 +106,47 @@ run rollback $sim --record "$rec"
 check "a .magn pair of no generation here: nothing deleted, nothing swapped, the record rolled back" eval '
 	[ $rc -eq 0 ] && ! says "was a change away" err && cmp -s "$rec.magn" "$work/g1.magn.previous" &&
 	cmp -s "$rec.magn.previous" "$work/g1.magn.previous" && same "" g2.previous'
+
+# a save the record's pair refuses (its previous one a directory) when
+# only <record>.magn.previous is there (what "remove it, then run
+# magn-calibrate" leaves): the magnetometer's pair put back as it was
+cp "$work/g2" "$rec"
+rm -f "$rec.previous" "$rec.magn"
+mkdir "$rec.previous"
+cp "$work/g2.magn.previous" "$rec.magn.previous"
+run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --record "$rec"
+check "a save refused by the record's pair: exit 1, nothing changed (<record>.magn.previous kept, no .magn made)" eval '
+	[ $rc -eq 1 ] && says "nothing changed" err && same .magn.previous g2.magn.previous &&
+	[ ! -e "$rec.magn" ] && same "" g2'
+rmdir "$rec.previous"
+
+# a new factory record when the magnetometer's file of the one before
+# cannot be removed (a directory there): the record stands, exit 0, said
+rm -f "$rec.magn" "$rec.magn.previous"
+mkdir -p "$rec.magn/x"
+# shellcheck disable=SC2086
+run factory-test $sim --record "$rec"
+check "factory-test: a .magn that cannot be removed does not fail the stored record (exit 0, said, not used)" eval '
+	[ $rc -eq 0 ] && says "the record is written; the magnetometer.s files" err &&
+	says "^4-1 *pass store calibration record" out && [ -d "$rec.magn" ]'
+rm -rf "$rec.magn"
+
+# the daemon at start: the same cut save (no journal) put in step
+cp "$work/g1" "$rec"
+cp "$work/g1.previous" "$rec.previous"
+cp "$work/g2.magn" "$rec.magn"
+cp "$work/g2.magn.previous" "$rec.magn.previous"
+sock=$work/sock
+# shellcheck disable=SC2086
+"$calibd" daemon $sim --record "$rec" --socket "$sock" 2>"$work/err" &
+pid=$!
+# ready when its socket is there (a busy machine only makes it slower; a
+# daemon that died is not waited for)
+while [ ! -S "$sock" ] && kill -0 "$pid" 2>/dev/null; do sleep 0.1; done
+kill "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+check "the daemon at start puts a cut save's pairs in step (no journal left by it), said" eval '
+	says "was a change away from" err && same .magn g2.magn.previous &&
+	same .magn.previous g2.magn && same "" g1'
 
 tap_end

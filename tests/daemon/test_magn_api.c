@@ -216,6 +216,16 @@ static void turned_board(void **state)
 				      sizeof(buf)), file, sizeof(file));
 	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), -EINVAL);
 	assert_non_null(strstr(err, "another change of the record"));
+	/*
+	 * ... unless its previous one is the record's (a change of both cut
+	 * between the files): that one is used, as recovery will put it back
+	 */
+	write_text("turned.magn.previous", buf,
+		   record_magn_format(&rec.magn, example, rec.created, buf,
+				      sizeof(buf)), file, sizeof(file));
+	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), 0);
+	assert_true(cal.rotation[0][1] == rot[0][1] / 1e6);
+	unlink(file);
 	/* a .magn file of none (after a rollback): no calibration */
 	rec.magn.present = false;
 	write_text("turned.magn", buf,

@@ -344,18 +344,21 @@ static void bad_magn_file_keeps_accel(void **state)
 	expect_accel_restored(f);
 	expect(f->magn, "in_magn_x_calibbias", "77\n");
 
+	/* the magnetometer left as it was (not reset to the defaults) */
 	reset(f, true);
+	fake_put(f->magn, "in_magn_x_calibscale", "1.250000\n");
 	write_magn_file(f, 0, "format = as9888-magnetometer 1\ntorn");
 	assert_int_equal(iio_restore(path, f->dev, false), -EINVAL);
 	expect_accel_restored(f);
-	expect(f->magn, "in_magn_x_calibscale", "1.000000\n");
+	expect(f->magn, "in_magn_x_calibscale", "1.250000\n");
 
 	/* restore --device: the accelerometer's needs no .magn */
 	reset(f, true);
+	fake_put(f->magn, "in_magn_x_calibscale", "1.250000\n");
 	assert_int_equal(iio_restore_device(path, f->dev), 0);
 	expect_accel_restored(f);
 	assert_int_equal(iio_restore_device(path, f->magn), -EINVAL);
-	expect(f->magn, "in_magn_x_calibscale", "1.000000\n");
+	expect(f->magn, "in_magn_x_calibscale", "1.250000\n");
 	assert_int_equal(unlink(path), 0);
 	snprintf(path, sizeof(path), "%s/cal1.magn", f->root);
 	assert_int_equal(unlink(path), 0);

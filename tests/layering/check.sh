@@ -10,7 +10,7 @@ n=0
 fail=0
 ok() { n=$((n + 1)); echo "ok $n - $1"; }
 not_ok() { n=$((n + 1)); fail=1; echo "not ok $n - $1"; }
-echo "1..7"
+echo "1..10"
 
 out=$(python3 "$checker" "$top" 2>&1)
 if [ $? -eq 0 ]; then ok "the tree keeps its layers and has no include circle"
@@ -54,6 +54,17 @@ expect_refusal "an include circle inside one layer is refused" \
 fresh
 add_include main.c commands/nonexistent.h
 expect_refusal "an include of a file that is not there is refused" '"commands/nonexistent.h" is no file'
+fresh
+add_include common/fd_close.c ../service/uevent.h
+expect_refusal "an include through .. is refused" '"../service/uevent.h": no ".." in an include'
+fresh
+sed -i '0,/^#include/s||#include <service/uevent.h>\n#include|' "$scratch/t/daemon/src/common/json.c"
+expect_refusal "an angle include up is refused as a quoted one is" \
+	'common/json.c:[0-9]*: "service/uevent.h" is above'
+fresh
+add_include store/lock_file.c chip/iio.h
+expect_refusal "store/ including chip/ (beside each other) is refused" \
+	'"chip/iio.h": store/ and chip/ are beside each other'
 fresh
 touch "$scratch/t/daemon/src/helpers.c"
 expect_refusal "a file in no layer is refused" 'daemon/src/helpers.c: in no layer'

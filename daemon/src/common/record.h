@@ -50,6 +50,8 @@
 #define RECORD_MAGN_FILE_NAME		"as9888-magnetometer"
 #define RECORD_MAGN_FILE_VERSION	1
 #define RECORD_MAGN_SUFFIX		".magn"
+/* The file a change replaced, kept beside each (<record>.previous) */
+#define RECORD_PREVIOUS_SUFFIX		".previous"
 
 /**
  * struct calib_magn - the magnetometer's calibration (format 2)

@@ -57,6 +57,26 @@ static int read_text(const char *path, char *buf, size_t size, size_t *len,
 }
 
 /*
+ * <@magn_file>.previous into @m when it is of @rec (its generation): after
+ * a change of both cut between the two files, what the daemon's recovery
+ * puts back in <record>.magn. 0 or -errno.
+ */
+static int read_previous(const char *magn_file, const struct calib_record *rec,
+			 struct calib_magn *m)
+{
+	char file[PATH_MAX], buf[RECORD_MAX_SIZE + 1], why[256];
+	size_t len = 0;
+	int ret;
+
+	if ((size_t)snprintf(file, sizeof(file), "%s%s", magn_file,
+			     RECORD_PREVIOUS_SUFFIX) >= sizeof(file))
+		return -ENAMETOOLONG;
+	ret = read_text(file, buf, sizeof(buf), &len, why, sizeof(why));
+
+	return ret ? ret : record_magn_of(rec, buf, len, m, why, sizeof(why));
+}
+
+/*
  * The magnetometer's file beside the record (<@path>.magn), when there is
  * one: @rec->magn is what it holds, judged as the daemon judges it
  * (record_magn_of(): valid, the record's chip, the record's generation).
@@ -83,6 +103,12 @@ static int read_magn_file(const char *path, struct calib_record *rec,
 	if (ret)
 		return ret;
 	ret = record_magn_of(rec, buf, len, &m, why, sizeof(why));
+	/*
+	 * A change of both cut between the two files: the previous one is the
+	 * record's, and what the daemon's recovery puts back (read-only here)
+	 */
+	if (ret == -ESTALE && !read_previous(file, rec, &m))
+		ret = 0;
 	if (ret == -EXDEV)
 		snprintf(err, errlen, "%s belongs to another chip than %s (%s): not used",
 			 file, path, why);

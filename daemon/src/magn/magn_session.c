@@ -130,7 +130,9 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 	if (!res->solved || f->status == MAGCAL_NO_COVERAGE ||
 	    (f->status == MAGCAL_OK && f->coverage < MAGN_SESSION_COVERAGE)) {
 		snprintf(buf, size, "not enough orientations covered (%.0f%% in %.0f s, %u samples): turn the device slowly through every direction (a figure eight, then over on every side) and run again",
-			 100 * res->coverage, res->elapsed_ns / (double)NS_PER_S,
+			 /* what was judged: the last fit's, when there was one */
+			 100 * (res->solved ? f->coverage : res->coverage),
+			 res->elapsed_ns / (double)NS_PER_S,
 			 res->samples);
 		return;
 	}

@@ -152,10 +152,22 @@ static long read_magn(const char *file, const struct calib_record *rec,
 static int load_magn(struct record_store *s)
 {
 	char buf[RECORD_MAX_SIZE], err[RECORD_STORE_ERR_LEN];
+	char why[RECORD_STORE_ERR_LEN];
 	struct calib_magn m;
 	long len;
 
 	len = read_magn(s->p.magn, &s->rec, buf, &m, err, sizeof(err));
+	if (len == -ESTALE && s->lock_fd < 0 &&
+	    read_magn(s->p.magn_previous, &s->rec, buf, &m, why,
+		      sizeof(why)) >= 0) {
+		/*
+		 * A change of both cut between the pairs, read without the
+		 * lock (restore at boot): what recovery makes of it, read-only
+		 */
+		fprintf(stderr, "as9888-calibd: %s is a change away from %s (an interrupted change of both): %s, the record's, is used; the next command that locks the record puts the pair in step\n",
+			s->p.magn, s->p.record, s->p.magn_previous);
+		len = 0;
+	}
 	if (len >= 0)
 		s->rec.magn = m;
 	if (len >= 0 || len == -ENOENT)
@@ -408,8 +420,13 @@ int record_store_recover_now(const char *path)
 	struct record_paths p;
 	int fd = build_paths(&p, path);
 
-	/* nothing interrupted: nothing made (not even the lock) */
-	if (!fd && access(p.record_journal, F_OK) && access(p.magn_journal, F_OK))
+	/*
+	 * Nothing interrupted: nothing made (not even the lock). A change of
+	 * both cut between the pairs leaves no journal, only both of the
+	 * magnetometer's files (recover_generation())
+	 */
+	if (!fd && access(p.record_journal, F_OK) && access(p.magn_journal, F_OK) &&
+	    (access(p.magn, F_OK) || access(p.magn_previous, F_OK)))
 		return 0;
 	if (!fd)
 		fd = take_lock(&p, false, 0);
@@ -517,8 +534,13 @@ static int undo_magn(const struct record_paths *p, const struct magn_undo *u,
 	ret = u->had ? atomic_write_file(p->magn, u->cur, (size_t)u->cur_len,
 					 RECORD_MODE, err, errlen) :
 		       durable_unlink(p->magn, err, errlen);
-	if (!ret || ret == -ENOENT)
-		ret = durable_unlink(p->magn_previous, err, errlen);
+	if (ret && ret != -ENOENT)
+		return ret;
+	/* the previous one as it was: there before (its text), or not */
+	ret = u->prev_len >= 0 ?
+	      atomic_write_file(p->magn_previous, u->prev, (size_t)u->prev_len,
+				RECORD_MODE, err, errlen) :
+	      durable_unlink(p->magn_previous, err, errlen);
 
 	return ret == -ENOENT ? 0 : ret;
 }
@@ -577,7 +599,14 @@ int record_store_replace(struct record_store *s, struct calib_record *rec,
 	if (!keep_previous) {
 		ret = atomic_write_file(s->p.record, buf, (size_t)len, RECORD_MODE,
 					err, errlen);
-		return ret ? ret : forget_magn(&s->p, err, errlen);
+		if (ret)
+			return ret;
+		/* the record stands: a file left of the one it replaced is of
+		 * another generation, never used with it (said, not a failure) */
+		if (forget_magn(&s->p, why, sizeof(why)))
+			fprintf(stderr, "as9888-calibd: the record is written; the magnetometer's files of the record it replaced could not be removed (%s): they are not used with the new record\n",
+				why);
+		return 0;
 	}
 	old_len = read_file_nofollow(s->p.record, old, sizeof(old), err, errlen);
 	if (old_len < 0)
@@ -588,8 +617,13 @@ int record_store_replace(struct record_store *s, struct calib_record *rec,
 		return magn;
 	ret = record_pair_replace(&pair, buf, (size_t)len, old, (size_t)old_len,
 				  RECORD_MODE, err, errlen);
-	/* the record's pair stays the old one: so does the magnetometer's */
-	if (ret && magn && undo_magn(&s->p, &undo, why, sizeof(why))) {
+	/*
+	 * The record's pair stays the old one (no journal left): so does the
+	 * magnetometer's. With its journal left the record may be either;
+	 * recovery settles it, then puts the magnetometer's pair in step.
+	 */
+	if (ret && magn && access(s->p.record_journal, F_OK) &&
+	    undo_magn(&s->p, &undo, why, sizeof(why))) {
 		size_t n = strlen(err);
 
 		snprintf(err + n, errlen - n, "; %s could not be put back (%s): as9888-calibd rollback",
