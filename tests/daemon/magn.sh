@@ -130,7 +130,9 @@ frc=$?
 check "field mode, fed while turned slowly: a fit of about half the sphere, not stored (no .magn file)" eval '
 	[ $frc -eq 0 ] && grep -q "^fit: ok, coverage [45][0-9]%" "$work/feed" && [ ! -e "$rec.magn" ] &&
 	grep -q "^format = as9888-calibration 1$" "$rec"'
-sleep 1	# the last request's child done with the samples file
+# the last request's child is done with the samples file (it answers
+# after; its lock, should it linger, is waited for, bounded)
+flock -w 60 "$work/run/magn-samples" true
 rm -f "$work/run/magn-samples"
 
 "$here/magn_feed.py" "$sock" 99 1 120 -80 45 >"$work/feed" 2>&1

@@ -141,8 +141,11 @@ sock=$work/sock
 "$calibd" daemon $sim --record "$rec" --socket "$sock" 2>"$work/err" &
 pid=$!
 # ready when its socket is there (a busy machine only makes it slower; a
-# daemon that died is not waited for)
-while [ ! -S "$sock" ] && kill -0 "$pid" 2>/dev/null; do sleep 0.1; done
+# daemon that died is not waited for, one that makes no socket in 120 s
+# has stalled)
+t0=$(date +%s)
+while [ ! -S "$sock" ] && kill -0 "$pid" 2>/dev/null &&
+	[ $(($(date +%s) - t0)) -lt 120 ]; do sleep 0.1; done
 kill "$pid" 2>/dev/null
 wait "$pid" 2>/dev/null
 check "the daemon at start puts a cut save's pairs in step (no journal left by it), said" eval '

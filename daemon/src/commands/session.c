@@ -125,8 +125,8 @@ int session_run_test(const struct cli_opts *o, const struct ftest_opts *f,
  * A new record in effect: the register engine leaves its DAC values in the
  * chip, the driver gets the record written into its attributes.
  */
-int session_activate_record(const struct cli_opts *o,
-			    const struct calib_record *rec)
+static int session_activate_record(const struct cli_opts *o,
+				   const struct calib_record *rec)
 {
 	char dir[IIO_PATH_MAX];
 	int ret;

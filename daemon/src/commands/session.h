@@ -36,10 +36,6 @@ int session_run_test(const struct cli_opts *o, const struct ftest_opts *f,
 bool session_store_result(const struct cli_opts *o, struct record_store *s,
 			  struct ftest_result *res, bool keep_previous);
 
-/* Put a newly stored record in effect on the device; 0 or -errno (said) */
-int session_activate_record(const struct cli_opts *o,
-			    const struct calib_record *rec);
-
 /*
  * Apply the record loaded in @s (record_store_open() with
  * RECORD_STORE_MAGN_OPTIONAL) to the AS9888 IIO device at @dir, both its

@@ -355,8 +355,9 @@ again:
 		return fd;
 	ret = lock_file_try(fd);
 	if (ret == -EWOULDBLOCK && wait) {
-		fprintf(stderr, "as9888-calibd: %s is held by another command; waiting up to %u s\n",
-			p->lock, timeout_s);
+		if (timeout_s)
+			fprintf(stderr, "as9888-calibd: %s is held by another command; waiting up to %u s\n",
+				p->lock, timeout_s);
 		ret = lock_file_wait(fd, timeout_s * 1000);
 	}
 	if (ret == -ETIMEDOUT)
