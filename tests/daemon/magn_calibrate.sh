@@ -115,11 +115,11 @@ check "a device lying still: exit 1 after the timeout, says to turn it, record u
 	[ $rc -eq 1 ] && says "not enough orientations covered" err &&
 	says "record is unchanged" err && cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn"'
 
-# turned a degree a measurement, the session's 60 s cover about 41 % of
-# the sphere: magcal's own floor (40 %) passes, the session's 60 % does
-# not, and the fit at the timeout is held to the session's rule (before:
-# stored, exit 0; such fits were found degrees off)
-sed 's/^tumble = 4$/tumble = 1/' "$work/board.unit" >"$work/crawl.unit"
+# turned 0.3 degrees a measurement (1.5 a sample of five), the session's
+# 60 s cover about 43 % of the sphere: magcal's own floor (40 %) passes,
+# the session's 60 % does not, and the fit at the timeout is held to the
+# session's rule (before: stored, exit 0; such fits were found degrees off)
+sed 's/^tumble = 4$/tumble = 0.3/' "$work/board.unit" >"$work/crawl.unit"
 run magn-calibrate --sim-clock virtual --unit "$work/crawl.unit" --timeout 60 --record "$rec"
 check "too little covered at the timeout, though magcal would fit it: exit 1, the coverage said, record unchanged" eval '
 	[ $rc -eq 1 ] && says "not enough orientations covered (4[0-9]% in 60 s" err &&
@@ -147,14 +147,16 @@ keys = dict(l.split(" = ", 1) for l in open(sys.argv[1]).read().splitlines() if 
 b = [float(v) for v in keys["magn_hard_iron"].split()]
 assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b' "$rec.magn"
 
-# a weak magnet moving slowly past (17.6 uT peak over 38 s, from the
-# start: a phone's speaker, a laptop's hinge), which a fit absorbs into
+# a weak magnet moving slowly past (17.6 uT peak over 2950 measurements,
+# 38 s at the session's 5 measurements every 64.5 ms on the simulator's
+# clock, from the start: a phone's speaker, a laptop's hinge), which a
+# fit absorbs into
 # the hard iron (before the store and the gate of issue 39 it was stored
 # 9.6 uT off): the gate refuses the fits while the magnet's samples are
 # in the store, the store replaces them as the turning goes on, and the
 # stored hard iron is the board's
 cp "$work/board.unit" "$work/slow.unit"
-printf 'disturbance = 10 -12 8 760\n' >>"$work/slow.unit"
+printf 'disturbance = 10 -12 8 2950\n' >>"$work/slow.unit"
 cp "$rec" "$work/before"
 cp "$rec.magn" "$work/before.magn"
 run magn-calibrate --sim-clock virtual --unit "$work/slow.unit" --record "$rec"
@@ -164,9 +166,13 @@ import sys
 keys = dict(l.split(\" = \", 1) for l in open(sys.argv[1]).read().splitlines() if \" = \" in l)
 b = [float(v) for v in keys[\"magn_hard_iron\"].split()]
 assert max(abs(x - y) for x, y in zip(b, [120, -80, 45])) < 1.0, b" "$rec.magn"'
-# the same magnet, slower (60 s) and a session of 15 s, which ends while
-# it is there (before: stored 4 uT off): refused, the record unchanged
-sed 's/^disturbance = .*/disturbance = 10 -12 8 1200/' "$work/slow.unit" >"$work/slower.unit"
+# the same magnet, slower (6000 measurements, 77 s) and a session of 15 s,
+# which ends while it is there (before: stored 4 uT off), the board turned
+# 10 degrees a sample (2 a measurement: at 4 the session covers 60 % in
+# 5 s, before the gate can see the slow rise): refused, the record
+# unchanged
+sed 's/^disturbance = .*/disturbance = 10 -12 8 6000/; s/^tumble = 4$/tumble = 2/' \
+	"$work/slow.unit" >"$work/slower.unit"
 cp "$rec" "$work/before"
 cp "$rec.magn" "$work/before.magn"
 run magn-calibrate --sim-clock virtual --unit "$work/slower.unit" --timeout 15 --record "$rec"

@@ -69,7 +69,9 @@ static void chip_samples(void **state)
 		uint64_t before = magn_source_now_ns(s);
 
 		assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
-		assert_true(r.t_ns >= before + 7300000);	/* t_MAG */
+		/* MAGN_SOURCE_AVERAGE measurements of t_MAG each */
+		assert_int_equal(r.measurements, MAGN_SOURCE_AVERAGE);
+		assert_true(r.t_ns >= before + MAGN_SOURCE_AVERAGE * 7300000ULL);
 		for (axis = 0; axis < AS9888_AXES; axis++)
 			sum[axis] += r.field_ut[axis];
 		/* the unit's "up" is +z: about +256 LSB there, little elsewhere */
@@ -298,11 +300,13 @@ static void iio_buffered(void **state)
 {
 	const char *m[3] = { "7\n", "8\n", "9\n" };
 	const char *a[3] = { "1\n", "2\n", "3\n" };
+	static const int16_t mx[5] = { 160, 170, 165, 163, 167 };
+	static const int16_t ax[5] = { 1, 5, 3, 2, 4 };
 	struct fake_sysfs *f = *state;
 	char err[512], text[1024], dir[512];
 	struct magn_source *s;
 	struct magn_reading r;
-	int fa, fm;
+	int fa, fm, i;
 	FILE *log = tmpfile();
 
 	assert_non_null(log);
@@ -314,14 +318,15 @@ static void iio_buffered(void **state)
 	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
 					      log, &s, err, sizeof(err)), 0);
 	log_text(log, text, sizeof(text));
-	assert_non_null(strstr(text, "both devices' buffers on as9888-dev0 at 20 Hz"));
+	assert_non_null(strstr(text, "both devices' buffers on as9888-dev0 at 100 Hz"));
+	assert_non_null(strstr(text, "5 measurements averaged a sample"));
 	/* both buffers on the chip's trigger, the axes and the timestamp */
 	expect_attr(f->dev, "trigger/current_trigger", "as9888-dev0");
 	expect_attr(f->magn, "trigger/current_trigger", "as9888-dev0");
 	expect_attr(f->dev, "buffer/enable", "1");
 	expect_attr(f->magn, "buffer/enable", "1");
-	expect_attr(f->magn, "sampling_frequency", "20");
-	expect_attr(f->dev, "sampling_frequency", "20");
+	expect_attr(f->magn, "sampling_frequency", "100");
+	expect_attr(f->dev, "sampling_frequency", "100");
 	snprintf(dir, sizeof(dir), "%s/scan_elements", f->dev);
 	expect_attr(dir, "in_temp_en", "0");
 	expect_attr(dir, "in_accel_y_en", "1");
@@ -330,25 +335,44 @@ static void iio_buffered(void **state)
 	fm = open_writer(f, 1);
 	/*
 	 * The magnetometer's first sample has no partner (the accelerometer's
-	 * buffer started after it): dropped. Then two measurements, their
-	 * timestamps a few microseconds apart, the second one saturated
+	 * buffer started after it): dropped. Then five measurements, their
+	 * two timestamps a few microseconds apart, averaged into one sample
 	 */
 	put_sample(fm, 1, 1, 1, 1000);
-	put_sample(fm, 165, -20, 0, 50001000);
-	put_sample(fa, 3, -1, 255, 50004000);
-	put_sample(fm, 4095, 0, 0, 100001000);
-	put_sample(fa, 0, 0, 256, 100002000);
+	for (i = 0; i < 5; i++) {
+		put_sample(fm, mx[i], -20, 0, 10001000 + i * 10000000LL);
+		put_sample(fa, ax[i], -1, 255, 10004000 + i * 10000000LL);
+	}
 	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
-	/* 165 / 1.5 - 10 = 100 LSB of 0.3 uT: the driver's calibration undone */
+	assert_int_equal(r.measurements, 5);
+	/*
+	 * the mean of 160..170 is 165; 165 / 1.5 - 10 = 100 LSB of 0.3 uT:
+	 * the driver's calibration undone
+	 */
 	assert_true(fabs(r.field_ut[0] - 30.0) < 1e-9);
 	assert_true(fabs(r.field_ut[1] - -20 * 0.3 * 261 / 256) < 1e-9);
-	assert_true(r.accel[0] == 3 && r.accel[1] == -1 && r.accel[2] == 255);
+	assert_true(fabs(r.accel[0] - 3) < 1e-12 && r.accel[1] == -1 &&
+		    r.accel[2] == 255);
+	/* the third measurement of the next sample saturated: no sample */
+	for (i = 0; i < 5; i++) {
+		put_sample(fm, i == 2 ? 4095 : 7, 0, 0, 60001000 + i * 10000000LL);
+		put_sample(fa, 1, 2, 3, 60002000 + i * 10000000LL);
+	}
 	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), -ERANGE);
 
-	/* the capture ends (the devices' ends closed): sysfs from then on */
+	/*
+	 * the capture ends (the devices' ends closed) after two more
+	 * measurements: the sample is their mean and one sysfs read's, and
+	 * sysfs reads from then on, one measurement a sample
+	 */
 	close(fa);
 	close(fm);
 	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
+	assert_int_equal(r.measurements, 3);
+	assert_true(fabs(r.field_ut[0] - (7 / 1.5 - 10) * 0.3) < 1e-9);
+	assert_true(fabs(r.accel[0] - 1) < 1e-12 && fabs(r.accel[2] - 3) < 1e-12);
+	assert_int_equal(magn_source_read(s, &r, err, sizeof(err)), 0);
+	assert_int_equal(r.measurements, 1);
 	assert_true(fabs(r.field_ut[0] - (7 / 1.5 - 10) * 0.3) < 1e-9);
 	assert_true(r.accel[0] == 1 && r.accel[1] == 2 && r.accel[2] == 3);
 	log_text(log, text, sizeof(text));

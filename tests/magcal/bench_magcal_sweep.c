@@ -212,6 +212,36 @@ static void board_unit(unsigned int b, const struct earth *e, unsigned int seed,
 	rng_state = 0x7a1d0000ULL + b * 977 + seed;
 }
 
+/*
+ * One sample as magn_source_read() takes it from the chip: the mean of
+ * MAGN_SOURCE_AVERAGE measurements. The device turns by @speed once per
+ * sample (the sweep's speeds are degrees per 50 ms) and its measurements
+ * are taken in that orientation: the model turns its device per
+ * measurement and wanders its axis per turn, so five turns of a fifth
+ * would be a more erratic motion than the one the speeds always meant.
+ * A hand turning 1-6 degrees in 50 ms moves less than 5 degrees during
+ * the measurements: their mean is off the sphere by under 0.05 uT.
+ */
+static void sample(struct chip *c, struct as9888_model *m, double speed,
+		   double mut[3], double accel[3])
+{
+	struct reading rd;
+	int k, i;
+
+	memset(mut, 0, 3 * sizeof(*mut));
+	memset(accel, 0, 3 * sizeof(*accel));
+	for (k = 0; k < MAGN_SOURCE_AVERAGE; k++) {
+		as9888_model_set_tumble(m, as9888_sim_now_ns(c->sim),
+					k ? 0 : (u32)lrint(speed * 1000));
+		measure(c, &rd);
+		for (i = 0; i < 3; i++) {
+			mut[i] += rd.count[i] * c->scale_ut[i] /
+				  MAGN_SOURCE_AVERAGE;
+			accel[i] += rd.accel_g[i] / MAGN_SOURCE_AVERAGE;
+		}
+	}
+}
+
 /* One session as magn-calibrate runs it, then the judgment */
 static void run_one(unsigned int b, const struct earth *e, double speed,
 		    const struct magnet *mag, unsigned int seed, double rot_deg,
@@ -227,10 +257,9 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 	struct magcal_result r;
 	struct as9888_model *m;
 	struct as9888_unit u;
-	struct reading rd;
 	struct stack st;
 	struct chip c;
-	double mut[3];
+	double mut[3], accel[3];
 
 	memset(out, 0, sizeof(*out));
 	board_unit(b, e, seed, &u);
@@ -241,8 +270,6 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 	s = magcal_new(&cfg);
 	chip_open(&c, &u);
 	m = as9888_sim_model(c.sim);
-	as9888_model_set_tumble(m, as9888_sim_now_ns(c.sim),
-				(u32)lrint(speed * 1000));
 	r.status = MAGCAL_NO_COVERAGE;
 	for (n = 0; n < total; n++) {
 		if (mag && n == dist_at) {
@@ -258,12 +285,11 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 						  mag->peak_ut * 1000);
 			as9888_model_set_disturbance(m,
 				as9888_sim_now_ns(c.sim), d,
-				(u32)lrint(mag->dur_s / INTERVAL_S));
+				(u32)lrint(mag->dur_s / INTERVAL_S *
+					   MAGN_SOURCE_AVERAGE));
 		}
-		measure(&c, &rd);
-		for (i = 0; i < 3; i++)
-			mut[i] = rd.count[i] * c.scale_ut[i];
-		if (magcal_add(s, mut, rd.accel_g) > 0)
+		sample(&c, m, speed, mut, accel);
+		if (magcal_add(s, mut, accel) > 0)
 			kept++;
 		if (kept >= next_solve) {
 			next_solve = kept + MAGN_SESSION_SOLVE_EVERY;

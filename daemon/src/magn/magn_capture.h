@@ -25,8 +25,12 @@
 
 #include "as9888_calib.h"
 
-/* The capture's rate: magn-calibrate's one sample per 50 ms */
-#define MAGN_CAPTURE_RATE_HZ	20
+/*
+ * The capture's rate: the magnetometer's fastest (the driver offers 100 Hz
+ * with the magnetometer on), MAGN_SOURCE_AVERAGE pairs averaged into each
+ * of magn-calibrate's samples, one per 50 ms
+ */
+#define MAGN_CAPTURE_RATE_HZ	100
 /* No pair for this long: the capture has stalled */
 #define MAGN_CAPTURE_STALL_MS	3000
 

@@ -48,7 +48,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 {
 	struct magcal_session *fit;
 	struct magcal_config cfg;
-	uint64_t start = magn_source_now_ns(src), now = start;
+	uint64_t start = magn_source_now_ns(src), now = start, tick = start;
 	unsigned int kept = 0, next_solve = MAGN_SESSION_SOLVE_EVERY;
 	unsigned int next_progress = MAGN_SESSION_PROGRESS_EVERY;
 	struct magn_reading r;
@@ -95,7 +95,17 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 			}
 			warned = warn_drift(res, warned, progress);
 		}
-		magn_source_sleep(src, MAGN_SESSION_INTERVAL_NS);
+		/*
+		 * Paced by the clock, not by the reads: a sample's
+		 * measurements take most of the interval on the chip's
+		 * registers (the capture paces itself: its sleep returns)
+		 */
+		tick += MAGN_SESSION_INTERVAL_NS;
+		now = magn_source_now_ns(src);
+		if (tick > now)
+			magn_source_sleep(src, tick - now);
+		else
+			tick = now;	/* late: no catching up in a burst */
 		now = magn_source_now_ns(src);
 	}
 	/*

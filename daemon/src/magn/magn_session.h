@@ -15,7 +15,10 @@
 #include "magn/magn_source.h"
 #include "common/record.h"
 
-/* One sample every 50 ms: 20 Hz, a turning hand moves a few degrees */
+/*
+ * One sample every 50 ms: 20 Hz, a turning hand moves a few degrees; each
+ * the mean of MAGN_SOURCE_AVERAGE measurements (magn_source.h)
+ */
 #define MAGN_SESSION_INTERVAL_NS	50000000ULL
 /* A fit is tried after every this many newly kept samples */
 #define MAGN_SESSION_SOLVE_EVERY	10
@@ -39,8 +42,8 @@
  * struct magn_session_result - how a session ended
  * @fit:	the last fit (valid when @solved)
  * @solved:	a fit was made at all
- * @samples:	measurements taken
- * @overflows:	measurements the magnetometer overflowed in (skipped)
+ * @samples:	samples taken (each the mean of a source's measurements)
+ * @overflows:	samples the magnetometer overflowed in (skipped)
  * @coverage:	the coverage when it ended
  * @elapsed_ns:	how long it ran, on the source's clock
  */

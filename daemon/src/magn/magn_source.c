@@ -136,10 +136,11 @@ static void start_capture(struct magn_source *s)
 	if (!magn_capture_open(s->accel_dir, s->magn_dir, &s->cap, why,
 			       sizeof(why))) {
 		if (s->log)
-			fprintf(s->log, "samples: both devices' buffers on %s at %d Hz, field and acceleration of one measurement\n",
-				magn_capture_trigger(s->cap), MAGN_CAPTURE_RATE_HZ);
+			fprintf(s->log, "samples: both devices' buffers on %s at %d Hz, field and acceleration of one measurement, %d measurements averaged a sample\n",
+				magn_capture_trigger(s->cap), MAGN_CAPTURE_RATE_HZ,
+				MAGN_SOURCE_AVERAGE);
 	} else if (s->log) {
-		fprintf(s->log, "samples: no buffered capture (%s): sysfs reads, the field and the acceleration of a sample a few measurements apart (a fast turn can be refused as a changing field)\n",
+		fprintf(s->log, "samples: no buffered capture (%s): sysfs reads, the field and the acceleration of a sample a few measurements apart (a fast turn can be refused as a changing field), one measurement a sample (noisier)\n",
 			why);
 	}
 	if (s->log)
@@ -331,10 +332,40 @@ static int read_iio(struct magn_source *s, struct magn_reading *r, char *err,
 	return 0;
 }
 
+/* Measurements that come one after the other: the chip's, the capture's */
+static bool averages(const struct magn_source *s)
+{
+	return s->t || s->cap;
+}
+
 int magn_source_read(struct magn_source *s, struct magn_reading *r,
 		     char *err, size_t errlen)
 {
-	return s->t ? read_chip(s, r, err, errlen) : read_iio(s, r, err, errlen);
+	struct magn_reading one;
+	unsigned int n = 0;
+	int axis, ret;
+
+	memset(r, 0, sizeof(*r));
+	/* a capture that stops half way ends the sample with what it has */
+	do {
+		ret = s->t ? read_chip(s, &one, err, errlen) :
+			     read_iio(s, &one, err, errlen);
+		if (ret)
+			return ret;
+		for (axis = 0; axis < AS9888_AXES; axis++) {
+			r->field_ut[axis] += one.field_ut[axis];
+			r->accel[axis] += one.accel[axis];
+		}
+		n++;
+	} while (n < MAGN_SOURCE_AVERAGE && averages(s));
+	for (axis = 0; axis < AS9888_AXES; axis++) {
+		r->field_ut[axis] /= n;
+		r->accel[axis] /= n;
+	}
+	r->t_ns = one.t_ns;
+	r->measurements = n;
+
+	return 0;
 }
 
 void magn_source_sleep(struct magn_source *s, uint64_t ns)

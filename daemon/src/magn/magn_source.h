@@ -17,17 +17,33 @@
 #include "common/record.h"
 #include "chip/transport.h"
 
+/*
+ * Measurements averaged into one sample where they come one after the
+ * other (the chip's registers, the driver's buffered capture at
+ * MAGN_CAPTURE_RATE_HZ): the magnetometer measures in 7.3 ms, so five fit
+ * in magn-calibrate's 50 ms between samples, and the mean has the
+ * magnetometer's noise over sqrt(5). The fit at partial coverage and the
+ * consistency gate are both limited by that noise (docs/DECISIONS.md,
+ * "Compass v3: five measurements a sample"). A turning hand moves the
+ * device a few degrees in those 40 ms: the mean is off the field's
+ * sphere by less than 0.05 uT. Sysfs reads take one measurement a sample.
+ */
+#define MAGN_SOURCE_AVERAGE	5
+
 /**
  * struct magn_reading - one sample
  * @field_ut:	the magnetic field, sensor frame, uT, uncalibrated
  *		(the driver's calibbias/calibscale, if any, taken out)
  * @accel:	the accelerometer's reading, LSB: gravity's direction
- * @t_ns:	when, on the source's clock
+ * @t_ns:	when, on the source's clock (its last measurement)
+ * @measurements: how many measurements @field_ut and @accel are the mean
+ *		of (MAGN_SOURCE_AVERAGE, or 1 from sysfs reads)
  */
 struct magn_reading {
 	double field_ut[AS9888_AXES];
 	double accel[AS9888_AXES];
 	uint64_t t_ns;
+	unsigned int measurements;
 };
 
 struct magn_source;
@@ -55,8 +71,10 @@ int magn_source_open_iio(const char *accel_dir, const char *magn_dir,
 			 struct magn_source **out, char *err, size_t errlen);
 
 /*
- * One sample. 0; -ERANGE when the magnetometer overflowed (a strong
- * magnet: no sample, try again); other -errno with why in @err.
+ * One sample: the mean of MAGN_SOURCE_AVERAGE measurements (one through
+ * sysfs reads). 0; -ERANGE when the magnetometer overflowed in one of
+ * them (a strong magnet: no sample, try again); other -errno with why in
+ * @err.
  */
 int magn_source_read(struct magn_source *s, struct magn_reading *r,
 		     char *err, size_t errlen);

@@ -138,8 +138,8 @@ if [ -n "$T" ]; then
 	echo 0 > $SIM/tumble && echo 0 > $SIM/magn_noise
 	grep -E "^(samples: |Magnetometer calibrated|  field)" $O/mc.log | sed 's/^/# /'
 	tail -n 2 $O/mc.log | sed 's/^/# /'
-	check "its samples from both devices' buffers on $T at 20 Hz" \
-		grep -q "^samples: both devices' buffers on $T at 20 Hz" $O/mc.log
+	check "its samples from both devices' buffers on $T at 100 Hz, 5 measurements a sample" \
+		grep -q "^samples: both devices' buffers on $T at 100 Hz, .*, 5 measurements averaged a sample" $O/mc.log
 	eq "afterwards every buffer attribute as it was" "$(bufstate)" "$B0"
 else
 	nok_for 3 "magn-calibrate through both buffers" "no data-ready trigger"
