@@ -183,13 +183,14 @@ factory)
 	speed_rounds 5
 	# the board's magnetic world (adapter knobs): hard and soft iron, a
 	# little noise, and a tumble that turns it a degree a measurement;
-	# magn-calibrate takes the field and the acceleration of one
+	# magn-calibrate takes the field and the acceleration of each
 	# measurement from both devices' buffers on the data-ready trigger
-	# (with sysfs reads, six measurements a sample, the compass gate
-	# refused such a run: see docs/DECISIONS.md). Learning takes about
-	# 1,800 samples, 90 s at 20 Hz on an idle host; a loaded host slows
-	# the guest, not the turn a measurement, so --timeout 600 only stops
-	# a session that stalls (the default 120 s left 30 s of margin)
+	# at 100 Hz, five measurements averaged a sample (with sysfs reads,
+	# six measurements a sample, the compass gate refused such a run:
+	# see docs/DECISIONS.md). The board then turns five degrees a sample:
+	# learning takes a few hundred samples; a loaded host slows the
+	# guest, not the turn a measurement, so --timeout 600 only stops a
+	# session that stalls
 	sim=/sys/kernel/debug/as9888_sim
 	echo "48 60 3" >$sim/earth && echo "120 -80 45" >$sim/hard_iron &&
 		echo "1.05 0.03 -0.02 0.03 0.95 0.04 -0.02 0.04 1.02" >$sim/soft_iron &&
