@@ -123,8 +123,8 @@ PY
 
 # a consumer turned slowly (1.5 deg a sample) for 900 samples covers about
 # half the sphere: the fit library takes the samples (its own floor is
-# 40 % coverage), the field mode does not (magn-calibrate's 60 %, part of
-# the gate's margin; before: stored); they go, and the mode starts again
+# 40 % coverage), the field mode does not (magn-calibrate's 60 % for
+# samples of one measurement, part of the gate's margin; before: stored); they go, and the mode starts again
 "$here/magn_feed.py" "$sock" 900 7 120 -80 45 1.5 >"$work/feed" 2>&1
 frc=$?
 check "field mode, fed while turned slowly: a fit of about half the sphere, not stored (no .magn file)" eval '

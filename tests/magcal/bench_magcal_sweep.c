@@ -6,8 +6,9 @@
  *  - learning time: the session as magn-calibrate runs it (one sample
  *    every MAGN_SESSION_INTERVAL_NS, a fit after every
  *    MAGN_SESSION_SOLVE_EVERY kept samples, done at MAGCAL_OK with
- *    MAGN_SESSION_COVERAGE, at the timeout a last fit of the store held
- *    to the same rule: magn_session_done()), or
+ *    MAGN_SESSION_COVERAGE for samples of MAGN_SOURCE_AVERAGE
+ *    measurements, at the timeout a last fit of the store held to the
+ *    same rule: magn_session_done()), or
  *    the refusal and its reason;
  *  - for a stored calibration: heading rms/worst over ORIENTATIONS random
  *    orientations (full correction: driver's calibbias/calibscale and the
@@ -25,7 +26,7 @@
  * it trusts (the identity when its uncertainty is above 0.3 deg),
  * <record>.magn written and read, the driver's and userspace's parts.
  *
- * --slow: the slowest speed alone (1 deg per measurement, the model's
+ * --slow: the slowest speed alone (1 deg per sample, the model's
  * tumble at 20 deg/s) over SLOW_SEEDS seeds the other modes do not use,
  * every board and Earth field of the full sweep, undisturbed and under
  * each of the full sweep's magnets, so that what is claimed at that speed
@@ -294,7 +295,7 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 		if (kept >= next_solve) {
 			next_solve = kept + MAGN_SESSION_SOLVE_EVERY;
 			magcal_solve(s, &r);
-			if (magn_session_done(&r))
+			if (magn_session_done(&r, true))
 				break;
 		}
 	}
@@ -310,7 +311,7 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 	out->turn_deg = r.turn_deg;
 	out->turn_trusted = r.turn_trusted;
 	out->learn_s = (n + (n < total)) * INTERVAL_S;
-	out->stored = magn_session_done(&r) && stack_from(&c, &r, &st);
+	out->stored = magn_session_done(&r, true) && stack_from(&c, &r, &st);
 	if (out->stored) {
 		struct score sc[CORR_COUNT];
 
@@ -357,7 +358,7 @@ static void print_run(unsigned int b, const struct earth *e, double speed,
 
 /*
  * The soft iron turned by 1.5 and 3 deg on each of @boards boards in the
- * field @e at 4 deg per measurement: without the turn, and as stored
+ * field @e at 4 deg per sample: without the turn, and as stored
  * (the turn with it when trusted)
  */
 static void turned_report(unsigned int boards, const struct earth *e)
@@ -411,7 +412,7 @@ static unsigned int slow_report(void)
 	double longest = 0, rms_max = 0, worst = 0, mworst = 0;
 	struct run r;
 
-	printf("compass calibration sweep (slow): %.0f deg per measurement; %u boards x %zu Earth fields x %u seeds undisturbed, x %zu magnets x %u seeds; the stored runs that miss a target:\n",
+	printf("compass calibration sweep (slow): %.0f deg per sample; %u boards x %zu Earth fields x %u seeds undisturbed, x %zu magnets x %u seeds; the stored runs that miss a target:\n",
 	       SLOW_SPEED, SLOW_BOARDS, ARRAY_SIZE(earths_full), SLOW_SEEDS,
 	       ARRAY_SIZE(magnets_full), SLOW_SEEDS);
 	for (sd = 0; sd < SLOW_SEEDS; sd++) {
@@ -505,9 +506,9 @@ int main(int argc, char **argv)
 		fprintf(stderr, "usage: %s [--full|--turned|--slow]\n", argv[0]);
 		return 2;
 	}
-	printf("compass calibration sweep (%s): %u boards x %u speeds x %u Earth fields, then %u slow magnets per board; noise %.1f uT rms, tumble = deg per measurement at %.0f Hz\n",
+	printf("compass calibration sweep (%s): %u boards x %u speeds x %u Earth fields, then %u slow magnets per board; noise %.1f uT rms a measurement, %d measurements a sample; speed = deg the device turns per sample, %.0f samples a second\n",
 	       full ? "full" : "short", boards, nspeed, nearth, nmag,
-	       NOISE_NT / 1000.0, 1 / INTERVAL_S);
+	       NOISE_NT / 1000.0, MAGN_SOURCE_AVERAGE, 1 / INTERVAL_S);
 	printf("%5s %8s %5s %-14s %-32s %6s %5s %5s %5s %6s %6s %6s\n",
 	       "board", "F/dip", "speed", "disturbance", "result", "time",
 	       "cover", "drift", "ddip", "hd rms", "worst", "|B|rms");
@@ -567,7 +568,7 @@ int main(int argc, char **argv)
 	       TARGET_HEAD_RMS, head_worst, TARGET_HEAD_WORST, mag_rms_max,
 	       TARGET_MAG_RMS);
 	for (k = 0; k < nspeed; k++)
-		printf("speed %.0f deg/measurement: %u/%u learned, %u within %.0f s, longest %.1f s\n",
+		printf("speed %.0f deg/sample: %u/%u learned, %u within %.0f s, longest %.1f s\n",
 		       speeds[k], sp_learned[k], sp_runs[k], sp_fast[k],
 		       TARGET_LEARN_S, sp_longest[k]);
 	printf("disturbed: %u runs, %u refused, %u stored, of them %u with a heading error above %.0f deg (worst stored %.2f deg)\n",

@@ -274,7 +274,8 @@ static int maybe_store(const struct cli_opts *o, struct calib_record *rec,
 	int64_t now = (int64_t)time(NULL);
 	int ret;
 
-	if (!magn_session_done(r) ||
+	/* a consumer's samples: one measurement each */
+	if (!magn_session_done(r, false) ||
 	    magn_session_to_record(r, now, &next, err, sizeof(err)) ||
 	    !magn_field_should_replace(&rec->magn, &next, now))
 		return 0;

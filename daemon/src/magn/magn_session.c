@@ -10,10 +10,15 @@
 #define NT_PER_UT	1000.0
 #define MICRO		1000000.0
 
-bool magn_session_done(const struct magcal_result *fit)
+double magn_session_coverage(bool averaged)
+{
+	return averaged ? MAGN_SESSION_COVERAGE : MAGN_SESSION_COVERAGE_SINGLE;
+}
+
+bool magn_session_done(const struct magcal_result *fit, bool averaged)
 {
 	return fit->status == MAGCAL_OK &&
-	       fit->coverage >= MAGN_SESSION_COVERAGE;
+	       fit->coverage >= magn_session_coverage(averaged);
 }
 
 /* Try a fit; true when its quality is reached */
@@ -23,7 +28,7 @@ static bool try_solve(struct magcal_session *fit, struct magn_session_result *re
 		return false;
 	res->solved = true;
 
-	return magn_session_done(&res->fit);
+	return magn_session_done(&res->fit, res->averaged);
 }
 
 /*
@@ -56,6 +61,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 	int ret = -ETIMEDOUT;
 
 	memset(res, 0, sizeof(*res));
+	res->averaged = true;
 	magcal_config_default(&cfg);
 	cfg.reference_field_ut = earth_ut;
 	fit = magcal_new(&cfg);
@@ -80,6 +86,9 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 			break;
 		} else if (magcal_add(fit, r.field_ut, r.accel) > 0) {
 			kept++;
+			/* one noisier sample kept: the session needs more */
+			if (r.measurements < MAGN_SOURCE_AVERAGE)
+				res->averaged = false;
 		}
 		if (kept >= next_progress && progress) {
 			next_progress = kept + MAGN_SESSION_PROGRESS_EVERY;
@@ -111,7 +120,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 	/*
 	 * Out of time: the last word is a fit of everything kept, held to the
 	 * same rule as every fit before it. magcal's own floor (40 %) is not
-	 * enough: the session's 60 % is part of the gate's margin
+	 * enough: the session's coverage is part of the gate's margin
 	 * (docs/DECISIONS.md), and a fit taken below it can be degrees off.
 	 */
 	if (ret == -ETIMEDOUT && magcal_count(fit) && try_solve(fit, res))
@@ -138,7 +147,8 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 	struct magcal_config cfg;
 
 	if (!res->solved || f->status == MAGCAL_NO_COVERAGE ||
-	    (f->status == MAGCAL_OK && f->coverage < MAGN_SESSION_COVERAGE)) {
+	    (f->status == MAGCAL_OK &&
+	     f->coverage < magn_session_coverage(res->averaged))) {
 		snprintf(buf, size, "not enough orientations covered (%.0f%% in %.0f s, %u samples): turn the device slowly through every direction (a figure eight, then over on every side) and run again",
 			 /* what was judged: the last fit's, when there was one */
 			 100 * (res->solved ? f->coverage : res->coverage),

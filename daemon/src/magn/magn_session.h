@@ -25,10 +25,16 @@
 /*
  * The session goes on past magcal's own minimum (its MAGCAL_OK) until the
  * samples cover this much of the sphere: more directions, a better fit,
- * and part of the disturbance gate's margin. The fit at the timeout is
- * held to it too (magn_session_done()).
+ * and part of the disturbance gate's margin. What is enough depends on
+ * the samples' noise: samples that are the mean of MAGN_SOURCE_AVERAGE
+ * measurements need MAGN_SESSION_COVERAGE, samples of one measurement
+ * (sysfs reads; the field mode's, one from a consumer each)
+ * MAGN_SESSION_COVERAGE_SINGLE (the sweep in docs/DECISIONS.md, "Compass
+ * v3: five measurements a sample"). The fit at the timeout is held to it
+ * too (magn_session_done()).
  */
-#define MAGN_SESSION_COVERAGE		0.6
+#define MAGN_SESSION_COVERAGE		0.55
+#define MAGN_SESSION_COVERAGE_SINGLE	0.6
 /*
  * A fit whose magnetometer is turned by this much against the
  * accelerometer (magcal_result turn_deg: an asymmetric soft iron, which
@@ -46,18 +52,28 @@
  * @overflows:	samples the magnetometer overflowed in (skipped)
  * @coverage:	the coverage when it ended
  * @elapsed_ns:	how long it ran, on the source's clock
+ * @averaged:	every sample was the mean of MAGN_SOURCE_AVERAGE
+ *		measurements (the coverage it needs: magn_session_done())
  */
 struct magn_session_result {
 	struct magcal_result fit;
 	bool solved;
+	bool averaged;
 	unsigned int samples;
 	unsigned int overflows;
 	double coverage;
 	uint64_t elapsed_ns;
 };
 
-/* A fit the session stores: magcal's MAGCAL_OK and MAGN_SESSION_COVERAGE */
-bool magn_session_done(const struct magcal_result *fit);
+/* The coverage a stored fit needs: its samples @averaged or of one measurement */
+double magn_session_coverage(bool averaged);
+
+/*
+ * A fit that is stored: magcal's MAGCAL_OK and magn_session_coverage(),
+ * @averaged when each of its samples was the mean of MAGN_SOURCE_AVERAGE
+ * measurements
+ */
+bool magn_session_done(const struct magcal_result *fit, bool averaged);
 
 /*
  * Run a session on @src for at most @timeout_ns, progress lines to

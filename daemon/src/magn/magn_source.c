@@ -136,7 +136,7 @@ static void start_capture(struct magn_source *s)
 	if (!magn_capture_open(s->accel_dir, s->magn_dir, &s->cap, why,
 			       sizeof(why))) {
 		if (s->log)
-			fprintf(s->log, "samples: both devices' buffers on %s at %d Hz, field and acceleration of one measurement, %d measurements averaged a sample\n",
+			fprintf(s->log, "samples: both devices' buffers on %s at %d Hz, the field and the acceleration of each measurement paired, %d measurements averaged a sample\n",
 				magn_capture_trigger(s->cap), MAGN_CAPTURE_RATE_HZ,
 				MAGN_SOURCE_AVERAGE);
 	} else if (s->log) {
