@@ -429,6 +429,81 @@ double magcal_progress(const struct magcal_session *s)
 	return coverage(s, NULL, c, NULL);
 }
 
+/* The centre direction (unit) of coverage cell @bin: cover_bin()'s inverse */
+static void cover_centre(int bin, double v[3])
+{
+	/* a cell spans 30 degrees of the face's 90: centres at -30, 0, 30 */
+	static const double tan_centre[3] = { -0.5773502691896257, 0,
+					      0.5773502691896257 };
+	int face = bin / 9, k = face / 2;
+	double n;
+
+	v[k] = face % 2 ? -1 : 1;
+	v[(k + 1) % 3] = tan_centre[bin % 9 / 3];
+	v[(k + 2) % 3] = tan_centre[bin % 3];
+	n = norm3(v);
+	v[0] /= n;
+	v[1] /= n;
+	v[2] /= n;
+}
+
+int magcal_guide(const struct magcal_session *s, const double m_ut[3],
+		 double axis[3], double *deg)
+{
+	bool hit[COVER_BINS] = { false };
+	double c[3], r, f[3], best_dot = -2, best[3] = { 0 }, n;
+	unsigned int i;
+	int j;
+
+	if (!s || !m_ut || !axis || !deg)
+		return -EINVAL;
+	if (!sphere_fit(s, NULL, c, &r))
+		return -EAGAIN;
+	for (i = 0; i < s->n; i++) {
+		double d[3] = { s->s[i].m[0] - c[0], s->s[i].m[1] - c[1],
+				s->s[i].m[2] - c[2] };
+
+		if (norm3(d) > 0)
+			hit[cover_bin(d)] = true;
+	}
+	for (j = 0; j < 3; j++)
+		f[j] = m_ut[j] - c[j];
+	n = norm3(f);
+	if (!(n > 0))
+		return -EAGAIN;
+	for (j = 0; j < 3; j++)
+		f[j] /= n;
+	for (j = 0; j < COVER_BINS; j++) {
+		double v[3], dot;
+
+		if (hit[j])
+			continue;
+		cover_centre(j, v);
+		dot = v[0] * f[0] + v[1] * f[1] + v[2] * f[2];
+		if (dot > best_dot) {
+			best_dot = dot;
+			memcpy(best, v, sizeof(best));
+		}
+	}
+	if (best_dot < -1.5)
+		return -ENOENT;
+	/* the device turns about target x field: the field seen turns back */
+	cross3(best, f, axis);
+	n = norm3(axis);
+	if (n < 1e-9) {
+		/* the target straight ahead or behind: any perpendicular axis */
+		double e[3] = { fabs(f[0]) < 0.9, fabs(f[0]) >= 0.9, 0 };
+
+		cross3(e, f, axis);
+		n = norm3(axis);
+	}
+	for (j = 0; j < 3; j++)
+		axis[j] /= n;
+	*deg = acos(fmax(-1, fmin(1, best_dot))) * DEG_PER_RAD;
+
+	return 0;
+}
+
 /* ---- Levenberg-Marquardt on the geometric residual ---- */
 
 static void param_matrix(const double x[NPARAM], double l[3][3])

@@ -239,6 +239,26 @@ unsigned int magcal_export(const struct magcal_session *s, double m[][3],
  */
 double magcal_progress(const struct magcal_session *s);
 
+/**
+ * magcal_guide() - which way to turn the device to cover more
+ * @s:		the session
+ * @m_ut:	the latest reading, uT, sensor frame
+ * @axis:	out: the unit axis, sensor frame, to turn the device about
+ *		(right-handed: a positive turn about it)
+ * @deg:	out: by how much, degrees
+ *
+ * The field's direction in the sensor frame, seen from the current
+ * estimate of the centre, is taken to the nearest of the coverage's cells
+ * that no kept sample is in: turning the device by @deg about @axis turns
+ * the field seen by the sensor by -@deg about it, onto that cell's centre.
+ *
+ * Return: 0; -ENOENT when every cell is covered; -EAGAIN when there is no
+ * estimate of the centre yet (too few samples) or @m_ut is at it;
+ * -EINVAL for NULL arguments.
+ */
+int magcal_guide(const struct magcal_session *s, const double m_ut[3],
+		 double axis[3], double *deg);
+
 /*
  * Fit the kept samples. Returns 0 with @r filled (r->status is the
  * verdict), or -EINVAL for NULL arguments. The session is unchanged.

@@ -21,7 +21,7 @@ trap 'rm -rf "$work"' EXIT
 . "$here/../lib/tap.sh"
 # shellcheck source=../lib/record.sh
 . "$here/../lib/record.sh"
-tap_plan 28
+tap_plan 30
 TAP_SHOW="$work/err $work/out"
 mkdir -p "$work/sys"
 export AS9888_SYSFS=$work/sys
@@ -45,6 +45,8 @@ UNIT
 run magn-calibrate --sim-clock virtual --unit "$work/board.unit" --record "$rec"
 check "a tumbling board: exit 0, progress shown, stored" eval '[ $rc -eq 0 ] &&
 	says "^coverage .*%, [0-9]* samples kept" out && says "^Stored in" out'
+check "the progress lines say which way to turn to cover more (the chip's axis, its sense, how far)" \
+	says "^coverage .*%, [0-9]* samples kept; to cover more: turn it about the chip's [XYZ] axis, +[XYZ] toward [+-][XYZ], about [0-9]* deg$" out
 cp "$work/out" "$work/first.out"
 check "the record stays format 1, key for key the factory record (what an older build reads), the calibration in its .magn file, the factory record kept as previous" eval '
 	grep -q "^format = as9888-calibration 1$" "$rec" && cmp -s "$rec.previous" "$work/factory" &&
@@ -178,6 +180,15 @@ cp "$rec.magn" "$work/before.magn"
 run magn-calibrate --sim-clock virtual --unit "$work/slower.unit" --timeout 15 --record "$rec"
 check "a slow magnet through the whole session: exit 1, the field changed, record unchanged" eval '
 	[ $rc -eq 1 ] && says "the field changed during the session" err &&
+	cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn"'
+# a weaker one (6.4 uT peak over 6000 measurements) drifts the field's
+# strength by 0.33 uT and its dip by 0.41 deg: under magcal's default
+# limits (0.4 uT, 0.6 deg) it was stored after 10.6 s with the hard iron
+# 1.1 uT off; the session's own limit on the strength (0.1 uT) refuses it
+sed 's/^disturbance = .*/disturbance = 4 -4 3 6000/' "$work/slower.unit" >"$work/weaker.unit"
+run magn-calibrate --sim-clock virtual --unit "$work/weaker.unit" --record "$rec"
+check "a weak slow magnet: exit 1, its strength drifted beyond the session's 0.10 uT, record unchanged" eval '
+	[ $rc -eq 1 ] && says "the field changed during the session (its strength drifted by 0\.[1-9][0-9] uT.*at most 0\.10 uT" err &&
 	cmp -s "$rec" "$work/before" && cmp -s "$rec.magn" "$work/before.magn"'
 
 # the board's soft iron turned by 2 deg about Z (S' = Rz S: asymmetric,

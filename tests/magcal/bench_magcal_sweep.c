@@ -243,10 +243,52 @@ static void sample(struct chip *c, struct as9888_model *m, double speed,
 	}
 }
 
+/*
+ * A user who follows magn-calibrate's progress lines ("to cover more:
+ * turn it about the chip's X axis, +Y toward +Z"): at each line the user
+ * takes the named axis, as a hand does, up to about 17 degrees off
+ * (a random tilt of a third of its length), and turns about it by the
+ * speed every sample until the next line. Before the first line (no
+ * estimate of the centre yet) the model's own tumble turns the device.
+ */
+static void follow_hint(const struct magcal_session *s, const double mut[3],
+			double user_axis[3], bool *have)
+{
+	struct magn_hint h;
+	double v[3], n = 0;
+	int i;
+
+	if (magn_session_hint(s, mut, &h))
+		return;
+	for (i = 0; i < 3; i++) {
+		v[i] = (i == h.axis ? h.sign : 0) + between(-1, 1) / 3;
+		n += v[i] * v[i];
+	}
+	for (i = 0; i < 3; i++)
+		user_axis[i] = v[i] / sqrt(n);
+	*have = true;
+}
+
+/* The device turned by @deg about @axis of its own (sensor) frame */
+static void turn_device(struct chip *c, struct as9888_model *m,
+			const double axis[3], double deg)
+{
+	s32 q[AS9888_QUAT_LEN], dq[AS9888_QUAT_LEN], a[3];
+	int i;
+
+	for (i = 0; i < 3; i++)
+		a[i] = (s32)lrint(axis[i] * AS9888_Q30_ONE);
+	as9888_model_orientation(m, q);
+	as9888_mw_quat_axis_angle(a, (s64)lrint(deg * 1000), dq);
+	/* sensor to world: a turn in the sensor's frame multiplies on the right */
+	as9888_mw_quat_mul(q, dq, q);
+	as9888_model_set_orientation(m, as9888_sim_now_ns(c->sim), q);
+}
+
 /* One session as magn-calibrate runs it, then the judgment */
 static void run_one(unsigned int b, const struct earth *e, double speed,
 		    const struct magnet *mag, unsigned int seed, double rot_deg,
-		    struct run *out)
+		    bool guided, struct run *out)
 {
 	unsigned int kept = 0, next_solve = MAGN_SESSION_SOLVE_EVERY, n, i;
 	unsigned int total = (unsigned int)(TIMEOUT_S / INTERVAL_S);
@@ -258,15 +300,19 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 	struct magcal_result r;
 	struct as9888_model *m;
 	struct as9888_unit u;
+	unsigned int next_progress = MAGN_SESSION_PROGRESS_EVERY;
+	unsigned int next_line = MAGN_SESSION_PROGRESS_SAMPLES;
+	double mut[3], accel[3], user_axis[3] = { 1, 0, 0 };
+	bool have_axis = false;
 	struct stack st;
 	struct chip c;
-	double mut[3], accel[3];
 
 	memset(out, 0, sizeof(*out));
 	board_unit(b, e, seed, &u);
 	if (rot_deg)
 		rotate_soft(&u, rot_deg);
 	magcal_config_default(&cfg);
+	cfg.max_drift_ut = MAGN_SESSION_MAX_DRIFT_UT;
 	cfg.reference_field_ut = e->f_ut * (1 + between(-WMM_ERROR, WMM_ERROR));
 	s = magcal_new(&cfg);
 	chip_open(&c, &u);
@@ -289,9 +335,18 @@ static void run_one(unsigned int b, const struct earth *e, double speed,
 				(u32)lrint(mag->dur_s / INTERVAL_S *
 					   MAGN_SOURCE_AVERAGE));
 		}
-		sample(&c, m, speed, mut, accel);
+		if (guided && have_axis)
+			turn_device(&c, m, user_axis, speed);
+		sample(&c, m, guided && have_axis ? 0 : speed, mut, accel);
 		if (magcal_add(s, mut, accel) > 0)
 			kept++;
+		/* magn_session_run()'s progress lines */
+		if (kept >= next_progress || n + 1 >= next_line) {
+			next_progress = kept + MAGN_SESSION_PROGRESS_EVERY;
+			next_line = n + 1 + MAGN_SESSION_PROGRESS_SAMPLES;
+			if (guided)
+				follow_hint(s, mut, user_axis, &have_axis);
+		}
 		if (kept >= next_solve) {
 			next_solve = kept + MAGN_SESSION_SOLVE_EVERY;
 			magcal_solve(s, &r);
@@ -372,7 +427,7 @@ static void turned_report(unsigned int boards, const struct earth *e)
 		unsigned int cnt = 0, trusted = 0;
 
 		for (b = 0; b < boards; b++) {
-			run_one(b, e, 4, NULL, 300 + b, rot, &r);
+			run_one(b, e, 4, NULL, 300 + b, rot, false, &r);
 			if (!r.stored)
 				continue;
 			cnt++;
@@ -405,14 +460,15 @@ static bool clean_ok(const struct run *r)
  * printed (the learning time is summed up). Returns the number of runs
  * that missed a target.
  */
-static unsigned int slow_report(void)
+static unsigned int slow_report(bool guided)
 {
 	unsigned int sd, b, j, k, runs = 0, stored = 0, fast = 0, good = 0;
 	unsigned int inexact = 0, mruns = 0, mstored = 0, wrong = 0;
 	double longest = 0, rms_max = 0, worst = 0, mworst = 0;
 	struct run r;
 
-	printf("compass calibration sweep (slow): %.0f deg per sample; %u boards x %zu Earth fields x %u seeds undisturbed, x %zu magnets x %u seeds; the stored runs that miss a target:\n",
+	printf("compass calibration sweep (slow%s): %.0f deg per sample; %u boards x %zu Earth fields x %u seeds undisturbed, x %zu magnets x %u seeds; the stored runs that miss a target:\n",
+	       guided ? ", the user following the progress lines" : "",
 	       SLOW_SPEED, SLOW_BOARDS, ARRAY_SIZE(earths_full), SLOW_SEEDS,
 	       ARRAY_SIZE(magnets_full), SLOW_SEEDS);
 	for (sd = 0; sd < SLOW_SEEDS; sd++) {
@@ -422,7 +478,8 @@ static unsigned int slow_report(void)
 				bool exact;
 
 				run_one(b, e, SLOW_SPEED, NULL,
-					SLOW_SEED_CLEAN + sd * 64 + j, 0, &r);
+					SLOW_SEED_CLEAN + sd * 64 + j, 0,
+					guided, &r);
 				runs++;
 				good += clean_ok(&r);
 				if (!r.stored)
@@ -447,7 +504,7 @@ static unsigned int slow_report(void)
 
 				run_one(b, e, SLOW_SPEED, &magnets_full[k],
 					SLOW_SEED_MAGNET + sd * 64 + k, 0,
-					&r);
+					guided, &r);
 				mruns++;
 				if (!r.stored)
 					continue;
@@ -501,9 +558,11 @@ int main(int argc, char **argv)
 		return 0;
 	}
 	if (argc == 2 && !strcmp(argv[1], "--slow"))
-		return slow_report() ? 1 : 0;
+		return slow_report(false) ? 1 : 0;
+	if (argc == 2 && !strcmp(argv[1], "--guided"))
+		return slow_report(true) ? 1 : 0;
 	if (argc > 2 || (argc == 2 && !full)) {
-		fprintf(stderr, "usage: %s [--full|--turned|--slow]\n", argv[0]);
+		fprintf(stderr, "usage: %s [--full|--turned|--slow|--guided]\n", argv[0]);
 		return 2;
 	}
 	printf("compass calibration sweep (%s): %u boards x %u speeds x %u Earth fields, then %u slow magnets per board; noise %.1f uT rms a measurement, %d measurements a sample; speed = deg the device turns per sample, %.0f samples a second\n",
@@ -518,7 +577,7 @@ int main(int argc, char **argv)
 				bool ok;
 
 				run_one(b, &earths[j], speeds[k], NULL, k * 16 + j,
-					0, &r);
+					0, false, &r);
 				clean++;
 				sp_runs[k]++;
 				sp_learned[k] += r.stored;
@@ -549,7 +608,7 @@ int main(int argc, char **argv)
 			double speed = speeds[(b * 7 + k) % nspeed];
 			bool bad;
 
-			run_one(b, e, speed, &magnets[k], 100 + k, 0, &r);
+			run_one(b, e, speed, &magnets[k], 100 + k, 0, false, &r);
 			disturbed++;
 			refused += !r.stored;
 			bad = r.stored &&

@@ -399,6 +399,80 @@ static void test_progress(void **state)
 	magcal_free(s);
 }
 
+/* @v turned by @deg about the unit @axis (right-handed), into @out */
+static void turn(const double v[3], const double axis[3], double deg,
+		 double out[3])
+{
+	double c = cos(deg * DEG), sn = sin(deg * DEG);
+	double dot = axis[0] * v[0] + axis[1] * v[1] + axis[2] * v[2];
+	double x[3] = { axis[1] * v[2] - axis[2] * v[1],
+			axis[2] * v[0] - axis[0] * v[2],
+			axis[0] * v[1] - axis[1] * v[0] };
+	int i;
+
+	for (i = 0; i < 3; i++)
+		out[i] = v[i] * c + x[i] * sn + axis[i] * dot * (1 - c);
+}
+
+/*
+ * The guide: from what is covered, the way to the nearest cell that is
+ * not, as a turn of the device; followed again and again it covers the
+ * whole sphere
+ */
+static void test_guide(void **state)
+{
+	static const struct board round = { .s = { { 1, 0, 0 }, { 0, 1, 0 },
+						    { 0, 0, 1 } },
+					    .h = { 150, -80, 35 } };
+	struct magcal_session *s = magcal_new(NULL);
+	double d[3], m[3], f[3] = { 0, 0, 1 }, t[3], axis[3], deg, p;
+	int i, k, n, steps;
+
+	(void)state;
+	reading(&round, f, 48, m);
+	assert_int_equal(magcal_guide(s, m, axis, &deg), -EAGAIN);
+	assert_int_equal(magcal_guide(NULL, m, axis, &deg), -EINVAL);
+	assert_int_equal(magcal_guide(s, m, NULL, &deg), -EINVAL);
+	rng_state = 11;
+	for (i = 0; i < 200; i++) {
+		direction(60, d);
+		reading(&round, d, 48, m);
+		magcal_add(s, m, NULL);
+	}
+	p = magcal_progress(s);
+	reading(&round, f, 48, m);
+	assert_int_equal(magcal_guide(s, m, axis, &deg), 0);
+	assert_true(fabs(axis[0] * axis[0] + axis[1] * axis[1] +
+			 axis[2] * axis[2] - 1) < 1e-9);
+	/* the field seen turns the other way: -deg about the axis */
+	turn(f, axis, -deg, t);
+	assert_true(fabs(t[2] - cos(deg * DEG)) < 1e-9);
+	/* out of the covered cap (60 deg), and no farther than it must be */
+	if (!(deg > 50 && deg < 100))
+		fail_msg("guided %.1f deg from +Z", deg);
+	reading(&round, t, 48, m);
+	assert_int_equal(magcal_add(s, m, NULL), 1);
+	assert_true(magcal_progress(s) > p);
+	/* following the guide, 2 degrees a sample, covers every cell */
+	memcpy(f, t, sizeof(f));
+	for (steps = 0; steps < 200; steps++) {
+		reading(&round, f, 48, m);
+		if (magcal_guide(s, m, axis, &deg))
+			break;
+		n = (int)ceil(deg / 2);
+		for (k = 0; k < n; k++) {
+			turn(f, axis, -deg / n, d);
+			memcpy(f, d, sizeof(f));
+			reading(&round, f, 48, m);
+			magcal_add(s, m, NULL);
+		}
+	}
+	assert_true(magcal_progress(s) == 1);
+	reading(&round, f, 48, m);
+	assert_int_equal(magcal_guide(s, m, axis, &deg), -ENOENT);
+	magcal_free(s);
+}
+
 /* Samples: still ones are not kept; a full set keeps the newest */
 static void test_add(void **state)
 {
@@ -854,6 +928,7 @@ int main(void)
 		cmocka_unit_test(test_field_implausible),
 		cmocka_unit_test(test_reference),
 		cmocka_unit_test(test_progress),
+		cmocka_unit_test(test_guide),
 		cmocka_unit_test(test_add),
 		cmocka_unit_test(test_store),
 		cmocka_unit_test(test_export),

@@ -21,6 +21,52 @@ bool magn_session_done(const struct magcal_result *fit, bool averaged)
 	       fit->coverage >= magn_session_coverage(averaged);
 }
 
+int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
+		      struct magn_hint *h)
+{
+	double axis[3], deg;
+	int i, ret;
+
+	ret = magcal_guide(fit, m_ut, axis, &deg);
+	if (ret)
+		return ret;
+	h->axis = 0;
+	for (i = 1; i < 3; i++)
+		if (fabs(axis[i]) > fabs(axis[h->axis]))
+			h->axis = i;
+	h->sign = axis[h->axis] < 0 ? -1 : 1;
+	h->deg = deg;
+
+	return 0;
+}
+
+void magn_hint_text(const struct magn_hint *h, char *buf, size_t size)
+{
+	static const char name[] = "XYZ";
+	int from = (h->axis + 1) % 3, to = (h->axis + 2) % 3;
+
+	snprintf(buf, size, "turn it about the chip's %c axis, +%c toward %c%c, about %.0f deg",
+		 name[h->axis], name[from], h->sign > 0 ? '+' : '-', name[to],
+		 h->deg);
+}
+
+/* A progress line: the coverage and where to turn next */
+static void say_progress(const struct magcal_session *fit,
+			 const struct magn_reading *r, FILE *progress)
+{
+	struct magn_hint h;
+	char hint[128];
+
+	fprintf(progress, "coverage %3.0f%%, %u samples kept",
+		100 * magcal_progress(fit), magcal_count(fit));
+	if (!magn_session_hint(fit, r->field_ut, &h)) {
+		magn_hint_text(&h, hint, sizeof(hint));
+		fprintf(progress, "; to cover more: %s", hint);
+	}
+	fputc('\n', progress);
+	fflush(progress);
+}
+
 /* Try a fit; true when its quality is reached */
 static bool try_solve(struct magcal_session *fit, struct magn_session_result *res)
 {
@@ -56,6 +102,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 	uint64_t start = magn_source_now_ns(src), now = start, tick = start;
 	unsigned int kept = 0, next_solve = MAGN_SESSION_SOLVE_EVERY;
 	unsigned int next_progress = MAGN_SESSION_PROGRESS_EVERY;
+	unsigned int next_line = MAGN_SESSION_PROGRESS_SAMPLES;
 	struct magn_reading r;
 	bool warned = false;
 	int ret = -ETIMEDOUT;
@@ -63,6 +110,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 	memset(res, 0, sizeof(*res));
 	res->averaged = true;
 	magcal_config_default(&cfg);
+	cfg.max_drift_ut = MAGN_SESSION_MAX_DRIFT_UT;
 	cfg.reference_field_ut = earth_ut;
 	fit = magcal_new(&cfg);
 	if (!fit && earth_ut) {
@@ -90,11 +138,11 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 			if (r.measurements < MAGN_SOURCE_AVERAGE)
 				res->averaged = false;
 		}
-		if (kept >= next_progress && progress) {
+		if (progress && !got && (kept >= next_progress ||
+					 res->samples >= next_line)) {
 			next_progress = kept + MAGN_SESSION_PROGRESS_EVERY;
-			fprintf(progress, "coverage %3.0f%%, %u samples kept\n",
-				100 * magcal_progress(fit), magcal_count(fit));
-			fflush(progress);
+			next_line = res->samples + MAGN_SESSION_PROGRESS_SAMPLES;
+			say_progress(fit, &r, progress);
 		}
 		if (kept >= next_solve) {
 			next_solve = kept + MAGN_SESSION_SOLVE_EVERY;
@@ -167,6 +215,7 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 		break;
 	case MAGCAL_INCONSISTENT:
 		magcal_config_default(&cfg);
+		cfg.max_drift_ut = MAGN_SESSION_MAX_DRIFT_UT;
 		snprintf(buf, size, "the field changed during the session (its strength drifted by %.2f uT, its dip by %.2f deg beyond the noise; at most %.2f uT and %.2f deg are taken): a magnet or steel moving slowly near the device; run again away from it",
 			 f->drift_ut, f->dip_drift_deg, cfg.max_drift_ut,
 			 cfg.max_dip_drift_deg);

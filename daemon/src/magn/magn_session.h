@@ -36,13 +36,41 @@
 #define MAGN_SESSION_COVERAGE		0.55
 #define MAGN_SESSION_COVERAGE_SINGLE	0.6
 /*
+ * The consistency gate's limit on the field strength's drift along a
+ * session (magcal_config max_drift_ut), uT: a session lasts two minutes
+ * at most, in which nothing but a moving magnet or steel changes the
+ * field's strength by this much beyond the noise (undisturbed runs of the
+ * sweeps drift by 0.00; a slow magnet that a motion visiting each
+ * direction once let through, 0.17..0.37). The field mode, whose samples
+ * span hours of temperature, keeps magcal's default (0.4).
+ */
+#define MAGN_SESSION_MAX_DRIFT_UT	0.1
+/*
  * A fit whose magnetometer is turned by this much against the
  * accelerometer (magcal_result turn_deg: an asymmetric soft iron, which
  * the record cannot hold) is stored with a note saying so
  */
 #define MAGN_SESSION_TURN_NOTE_DEG	0.5
-/* Progress is printed after every this many newly kept samples */
+/*
+ * Progress is printed after every this many newly kept samples, and at
+ * the latest after this many samples (2 s): a user turning through what
+ * is covered keeps no sample, and is told where to turn next
+ */
 #define MAGN_SESSION_PROGRESS_EVERY	20
+#define MAGN_SESSION_PROGRESS_SAMPLES	40
+
+/**
+ * struct magn_hint - a turn of the device that covers more directions
+ * @axis:	the chip's axis to turn the device about (0 X, 1 Y, 2 Z)
+ * @sign:	+1: right-handed about it (X turns +Y toward +Z, Y turns
+ *		+Z toward +X, Z turns +X toward +Y); -1: the other way
+ * @deg:	about how far
+ */
+struct magn_hint {
+	int axis;
+	int sign;
+	double deg;
+};
 
 /**
  * struct magn_session_result - how a session ended
@@ -74,6 +102,17 @@ double magn_session_coverage(bool averaged);
  * measurements
  */
 bool magn_session_done(const struct magcal_result *fit, bool averaged);
+
+/*
+ * Where to turn the device from the reading @m_ut to cover the nearest
+ * directions not covered yet (magcal_guide()), as a turn about the chip's
+ * axis nearest to the exact one: 0, or magcal_guide()'s -errno
+ */
+int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
+		      struct magn_hint *h);
+
+/* @h in words: "turn it about the chip's X axis, +Y toward +Z, ..." */
+void magn_hint_text(const struct magn_hint *h, char *buf, size_t size);
 
 /*
  * Run a session on @src for at most @timeout_ns, progress lines to
