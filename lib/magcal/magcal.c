@@ -53,6 +53,10 @@
 #define PRIOR_WEIGHT		0.1
 /* coverage: cube faces split in 3 x 3 equal-angle cells */
 #define FACE_SPLIT		0.2679491924311228	/* tan(15 deg) */
+/* a cell's centre on its face: the middle of 15..45 deg, tan(30 deg) */
+#define FACE_CENTRE		0.5773502691896257
+/* two directions closer than this (the sine between them) are parallel */
+#define PARALLEL_SIN		1e-9
 #define COVER_BINS		54
 #define DEG_PER_RAD		(180.0 / M_PI)
 /* consistency in time: means over this many successive samples */
@@ -336,14 +340,15 @@ static int cover_bin(const double v[3])
 	return face * 9 + iu * 3 + iw;
 }
 
-/* Fraction of cells hit by the directions of (m - c), transformed by @w */
-static double coverage(const struct magcal_session *s, const bool *use,
-		       const double c[3], const double w[3][3])
+/* The cells hit by the directions of (m - c), transformed by @w */
+static void cover_hits(const struct magcal_session *s, const bool *use,
+		       const double c[3], const double w[3][3],
+		       bool hit[COVER_BINS])
 {
-	bool hit[COVER_BINS] = { false };
-	unsigned int i, cnt = 0;
+	unsigned int i;
 	int j;
 
+	memset(hit, 0, COVER_BINS * sizeof(*hit));
 	for (i = 0; i < s->n; i++) {
 		double d[3], v[3];
 
@@ -357,6 +362,17 @@ static double coverage(const struct magcal_session *s, const bool *use,
 		if (norm3(v) > 0)
 			hit[cover_bin(v)] = true;
 	}
+}
+
+/* Fraction of cells hit by the directions of (m - c), transformed by @w */
+static double coverage(const struct magcal_session *s, const bool *use,
+		       const double c[3], const double w[3][3])
+{
+	bool hit[COVER_BINS];
+	unsigned int cnt = 0;
+	int j;
+
+	cover_hits(s, use, c, w, hit);
 	for (j = 0; j < COVER_BINS; j++)
 		cnt += hit[j];
 	return (double)cnt / COVER_BINS;
@@ -432,47 +448,30 @@ double magcal_progress(const struct magcal_session *s)
 /* The centre direction (unit) of coverage cell @bin: cover_bin()'s inverse */
 static void cover_centre(int bin, double v[3])
 {
-	/* a cell spans 30 degrees of the face's 90: centres at -30, 0, 30 */
-	static const double tan_centre[3] = { -0.5773502691896257, 0,
-					      0.5773502691896257 };
+	static const double face_coord[3] = { -FACE_CENTRE, 0, FACE_CENTRE };
 	int face = bin / 9, k = face / 2;
 	double n;
 
 	v[k] = face % 2 ? -1 : 1;
-	v[(k + 1) % 3] = tan_centre[bin % 9 / 3];
-	v[(k + 2) % 3] = tan_centre[bin % 3];
+	v[(k + 1) % 3] = face_coord[bin % 9 / 3];
+	v[(k + 2) % 3] = face_coord[bin % 3];
 	n = norm3(v);
 	v[0] /= n;
 	v[1] /= n;
 	v[2] /= n;
 }
 
-int magcal_guide(const struct magcal_session *s, const double m_ut[3],
-		 double axis[3], double *deg)
+/*
+ * The centre of the cell no sample hit nearest to the unit direction
+ * @f, into @target: false when every cell is hit
+ */
+static bool nearest_open_cell(const bool hit[COVER_BINS], const double f[3],
+			      double target[3])
 {
-	bool hit[COVER_BINS] = { false };
-	double c[3], r, f[3], best_dot = -2, best[3] = { 0 }, n;
-	unsigned int i;
+	double best_dot = 0;
+	bool found = false;
 	int j;
 
-	if (!s || !m_ut || !axis || !deg)
-		return -EINVAL;
-	if (!sphere_fit(s, NULL, c, &r))
-		return -EAGAIN;
-	for (i = 0; i < s->n; i++) {
-		double d[3] = { s->s[i].m[0] - c[0], s->s[i].m[1] - c[1],
-				s->s[i].m[2] - c[2] };
-
-		if (norm3(d) > 0)
-			hit[cover_bin(d)] = true;
-	}
-	for (j = 0; j < 3; j++)
-		f[j] = m_ut[j] - c[j];
-	n = norm3(f);
-	if (!(n > 0))
-		return -EAGAIN;
-	for (j = 0; j < 3; j++)
-		f[j] /= n;
 	for (j = 0; j < COVER_BINS; j++) {
 		double v[3], dot;
 
@@ -480,26 +479,64 @@ int magcal_guide(const struct magcal_session *s, const double m_ut[3],
 			continue;
 		cover_centre(j, v);
 		dot = v[0] * f[0] + v[1] * f[1] + v[2] * f[2];
-		if (dot > best_dot) {
+		if (!found || dot > best_dot) {
 			best_dot = dot;
-			memcpy(best, v, sizeof(best));
+			memcpy(target, v, 3 * sizeof(*v));
+			found = true;
 		}
 	}
-	if (best_dot < -1.5)
-		return -ENOENT;
-	/* the device turns about target x field: the field seen turns back */
-	cross3(best, f, axis);
+	return found;
+}
+
+/*
+ * The turn of the device that takes the field it sees from the unit
+ * direction @f to the unit direction @target: the axis target x f (a turn
+ * of the device by t about an axis of its own turns the field it sees by
+ * -t), any axis across @f when the two are parallel
+ */
+static void device_turn(const double f[3], const double target[3],
+			double axis[3], double *deg)
+{
+	double n, dot = f[0] * target[0] + f[1] * target[1] + f[2] * target[2];
+	int j;
+
+	cross3(target, f, axis);
 	n = norm3(axis);
-	if (n < 1e-9) {
-		/* the target straight ahead or behind: any perpendicular axis */
-		double e[3] = { fabs(f[0]) < 0.9, fabs(f[0]) >= 0.9, 0 };
+	if (n < PARALLEL_SIN) {
+		/* a helper axis away from f, crossed with it */
+		double e[3] = { fabs(f[0]) < M_SQRT1_2, fabs(f[0]) >= M_SQRT1_2,
+				0 };
 
 		cross3(e, f, axis);
 		n = norm3(axis);
 	}
 	for (j = 0; j < 3; j++)
 		axis[j] /= n;
-	*deg = acos(fmax(-1, fmin(1, best_dot))) * DEG_PER_RAD;
+	*deg = acos(fmax(-1, fmin(1, dot))) * DEG_PER_RAD;
+}
+
+int magcal_guide(const struct magcal_session *s, const double m_ut[3],
+		 double axis[3], double *deg)
+{
+	double c[3], r, f[3], target[3], n;
+	bool hit[COVER_BINS];
+	int j;
+
+	if (!s || !m_ut || !axis || !deg)
+		return -EINVAL;
+	if (!sphere_fit(s, NULL, c, &r))
+		return -EAGAIN;
+	for (j = 0; j < 3; j++)
+		f[j] = m_ut[j] - c[j];
+	n = norm3(f);
+	if (!(n > 0))
+		return -EAGAIN;
+	for (j = 0; j < 3; j++)
+		f[j] /= n;
+	cover_hits(s, NULL, c, NULL, hit);
+	if (!nearest_open_cell(hit, f, target))
+		return -ENOENT;
+	device_turn(f, target, axis, deg);
 
 	return 0;
 }

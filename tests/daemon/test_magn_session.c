@@ -5,7 +5,8 @@
  * MAGN_SOURCE_AVERAGE measurements, MAGN_SESSION_COVERAGE_SINGLE for
  * samples of one), the refusal says the coverage judged, and a session on
  * the simulated chip (a tumbling board, virtual clock) takes averaged
- * samples and stores its fit once they cover MAGN_SESSION_COVERAGE.
+ * samples and stores its fit once they cover MAGN_SESSION_COVERAGE. The
+ * hint of the progress lines names the turn that leaves what is covered.
  */
 #include <errno.h>
 #include <math.h>
@@ -24,6 +25,7 @@
 #include "magn/magn_session.h"
 
 #define NS_PER_S	1000000000ULL
+#define DEG		(M_PI / 180.0)
 
 static struct magcal_result fit_at(enum magcal_status status, double coverage)
 {
@@ -70,6 +72,50 @@ static void refusal_says_the_coverage(void **state)
 	magn_session_why(&res, why, sizeof(why));
 	if (!strstr(why, "not enough orientations covered (57% in 120 s, 1860 samples)"))
 		fail_msg("refusal of a 57 %% fit of single samples: \"%s\"", why);
+}
+
+/*
+ * The hint: a cap of 60 degrees about +Z covered, the field read 50
+ * degrees from +Z toward +X: the way out is on to +X, a turn of the
+ * device about -Y (which turns the field it sees from +Z toward +X)
+ */
+static void hint_way_out(void **state)
+{
+	static const double hard[3] = { 120, -80, 45 };
+	struct magcal_session *fit = magcal_new(NULL);
+	struct magn_hint h;
+	double m[3], polar, azim;
+	char text[128];
+	int i;
+
+	(void)state;
+	assert_non_null(fit);
+	for (polar = 0; polar <= 60; polar += 5)
+		for (azim = 0; azim < 360; azim += 10) {
+			m[0] = 48 * sin(polar * DEG) * cos(azim * DEG);
+			m[1] = 48 * sin(polar * DEG) * sin(azim * DEG);
+			m[2] = 48 * cos(polar * DEG);
+			for (i = 0; i < 3; i++)
+				m[i] += hard[i];
+			magcal_add(fit, m, NULL);
+		}
+	m[0] = 48 * sin(50 * DEG) + hard[0];
+	m[1] = hard[1];
+	m[2] = 48 * cos(50 * DEG) + hard[2];
+	assert_int_equal(magn_session_hint(fit, m, &h), 0);
+	assert_int_equal(h.axis, 1);
+	assert_int_equal(h.sign, -1);
+	assert_true(fabs(h.deg - 40) < 0.5);
+	magn_hint_text(&h, text, sizeof(text));
+	assert_string_equal(text, "turn it about the chip's Y axis, +Z toward -X, about 40 deg");
+	/* the right-handed sense, named as such */
+	h = (struct magn_hint){ .axis = 0, .sign = 1, .deg = 12.4 };
+	magn_hint_text(&h, text, sizeof(text));
+	assert_string_equal(text, "turn it about the chip's X axis, +Y toward +Z, about 12 deg");
+	h = (struct magn_hint){ .axis = 2, .sign = 1, .deg = 90 };
+	magn_hint_text(&h, text, sizeof(text));
+	assert_string_equal(text, "turn it about the chip's Z axis, +X toward +Y, about 90 deg");
+	magcal_free(fit);
 }
 
 /* A board tumbling 4 degrees a measurement, its field 48 uT */
@@ -124,6 +170,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(coverage_by_noise),
 		cmocka_unit_test(refusal_says_the_coverage),
+		cmocka_unit_test(hint_way_out),
 		cmocka_unit_test(session_on_the_chip),
 	};
 

@@ -246,8 +246,9 @@ static void sample(struct chip *c, struct as9888_model *m, double speed,
 /*
  * A user who follows magn-calibrate's progress lines ("to cover more:
  * turn it about the chip's X axis, +Y toward +Z"): at each line the user
- * takes the named axis, as a hand does, up to about 17 degrees off
- * (a random tilt of a third of its length), and turns about it by the
+ * takes the named axis, as a hand does, not quite (a random vector of up
+ * to a third in each component added: 15 degrees off in the mean, 25 in
+ * one of twenty, 35 at most), and turns about it by the
  * speed every sample until the next line. Before the first line (no
  * estimate of the centre yet) the model's own tumble turns the device.
  */

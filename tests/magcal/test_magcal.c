@@ -440,16 +440,28 @@ static void test_guide(void **state)
 		magcal_add(s, m, NULL);
 	}
 	p = magcal_progress(s);
+	/* at the cap's edge, 50 deg from +Z toward +X */
+	f[0] = sin(50 * DEG);
+	f[2] = cos(50 * DEG);
 	reading(&round, f, 48, m);
 	assert_int_equal(magcal_guide(s, m, axis, &deg), 0);
 	assert_true(fabs(axis[0] * axis[0] + axis[1] * axis[1] +
 			 axis[2] * axis[2] - 1) < 1e-9);
-	/* the field seen turns the other way: -deg about the axis */
+	/*
+	 * the nearest cell out of the cap is +X's middle one, 40 deg on: the
+	 * device turns about -Y, and the field it sees by -deg about that
+	 */
+	if (!(fabs(axis[1] + 1) < 1e-6 && fabs(deg - 40) < 1e-6))
+		fail_msg("guided about (%.3f %.3f %.3f) by %.2f deg", axis[0],
+			 axis[1], axis[2], deg);
 	turn(f, axis, -deg, t);
-	assert_true(fabs(t[2] - cos(deg * DEG)) < 1e-9);
-	/* out of the covered cap (60 deg), and no farther than it must be */
-	if (!(deg > 50 && deg < 100))
-		fail_msg("guided %.1f deg from +Z", deg);
+	assert_true(fabs(t[0] - 1) < 1e-9);
+	/* the other way it would go back into the cap: nothing new there */
+	turn(f, axis, deg, d);
+	assert_true(d[2] > cos(15 * DEG));
+	reading(&round, d, 48, m);
+	magcal_add(s, m, NULL);
+	assert_true(magcal_progress(s) == p);
 	reading(&round, t, 48, m);
 	assert_int_equal(magcal_add(s, m, NULL), 1);
 	assert_true(magcal_progress(s) > p);

@@ -21,7 +21,9 @@
 #define RATE_TEXT_(n)	#n
 #define RATE_TEXT(n)	RATE_TEXT_(n)
 /* Samples the kernel keeps per device: three seconds at the rate */
-#define CAPTURE_LENGTH	"64"
+#define CAPTURE_LENGTH	RATE_TEXT(300)
+_Static_assert(300 == 3 * MAGN_CAPTURE_RATE_HZ,
+	       "CAPTURE_LENGTH is three seconds at MAGN_CAPTURE_RATE_HZ");
 /* The channels taken, in this order: three axes and the timestamp */
 #define CAPTURE_CHANNELS	4
 #define CAPTURE_TS		3

@@ -4,11 +4,27 @@
 #include <math.h>
 #include <string.h>
 
+#include "magn/magn_capture.h"
 #include "magn/magn_session.h"
 
 #define NS_PER_S	1000000000ULL
 #define NT_PER_UT	1000.0
 #define MICRO		1000000.0
+/* The chip's axes by name */
+#define AXIS_NAMES	"XYZ"
+
+/* the capture delivers a sample's measurements in one interval */
+_Static_assert(MAGN_CAPTURE_RATE_HZ * MAGN_SESSION_INTERVAL_NS ==
+	       MAGN_SOURCE_AVERAGE * NS_PER_S,
+	       "MAGN_SOURCE_AVERAGE pairs of the capture per session interval");
+
+/* magcal's configuration of a session: its own drift limit, the site's field */
+static void session_config(struct magcal_config *cfg, double earth_ut)
+{
+	magcal_config_default(cfg);
+	cfg->max_drift_ut = MAGN_SESSION_MAX_DRIFT_UT;
+	cfg->reference_field_ut = earth_ut;
+}
 
 double magn_session_coverage(bool averaged)
 {
@@ -31,7 +47,7 @@ int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
 	if (ret)
 		return ret;
 	h->axis = 0;
-	for (i = 1; i < 3; i++)
+	for (i = 1; i < AS9888_AXES; i++)
 		if (fabs(axis[i]) > fabs(axis[h->axis]))
 			h->axis = i;
 	h->sign = axis[h->axis] < 0 ? -1 : 1;
@@ -42,8 +58,8 @@ int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
 
 void magn_hint_text(const struct magn_hint *h, char *buf, size_t size)
 {
-	static const char name[] = "XYZ";
-	int from = (h->axis + 1) % 3, to = (h->axis + 2) % 3;
+	static const char name[] = AXIS_NAMES;
+	int from = (h->axis + 1) % AS9888_AXES, to = (h->axis + 2) % AS9888_AXES;
 
 	snprintf(buf, size, "turn it about the chip's %c axis, +%c toward %c%c, about %.0f deg",
 		 name[h->axis], name[from], h->sign > 0 ? '+' : '-', name[to],
@@ -55,7 +71,7 @@ static void say_progress(const struct magcal_session *fit,
 			 const struct magn_reading *r, FILE *progress)
 {
 	struct magn_hint h;
-	char hint[128];
+	char hint[MAGN_HINT_TEXT_MAX];
 
 	fprintf(progress, "coverage %3.0f%%, %u samples kept",
 		100 * magcal_progress(fit), magcal_count(fit));
@@ -75,6 +91,25 @@ static bool try_solve(struct magcal_session *fit, struct magn_session_result *re
 	res->solved = true;
 
 	return magn_session_done(&res->fit, res->averaged);
+}
+
+/*
+ * Wait for the next sample's time, @tick (advanced): paced by the clock,
+ * not by the reads, whose measurements can take most of the interval on
+ * the chip's registers (the capture paces itself: its sleep returns). A
+ * late sample starts the next interval: no catching up in a burst.
+ */
+static uint64_t pace(struct magn_source *src, uint64_t *tick)
+{
+	uint64_t now = magn_source_now_ns(src);
+
+	*tick += MAGN_SESSION_INTERVAL_NS;
+	if (*tick > now)
+		magn_source_sleep(src, *tick - now);
+	else
+		*tick = now;
+
+	return magn_source_now_ns(src);
 }
 
 /*
@@ -109,9 +144,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 
 	memset(res, 0, sizeof(*res));
 	res->averaged = true;
-	magcal_config_default(&cfg);
-	cfg.max_drift_ut = MAGN_SESSION_MAX_DRIFT_UT;
-	cfg.reference_field_ut = earth_ut;
+	session_config(&cfg, earth_ut);
 	fit = magcal_new(&cfg);
 	if (!fit && earth_ut) {
 		/* the one configuration this session changes */
@@ -152,18 +185,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 			}
 			warned = warn_drift(res, warned, progress);
 		}
-		/*
-		 * Paced by the clock, not by the reads: a sample's
-		 * measurements take most of the interval on the chip's
-		 * registers (the capture paces itself: its sleep returns)
-		 */
-		tick += MAGN_SESSION_INTERVAL_NS;
-		now = magn_source_now_ns(src);
-		if (tick > now)
-			magn_source_sleep(src, tick - now);
-		else
-			tick = now;	/* late: no catching up in a burst */
-		now = magn_source_now_ns(src);
+		now = pace(src, &tick);
 	}
 	/*
 	 * Out of time: the last word is a fit of everything kept, held to the
@@ -214,8 +236,7 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 			 f->residual_ut, f->rejected);
 		break;
 	case MAGCAL_INCONSISTENT:
-		magcal_config_default(&cfg);
-		cfg.max_drift_ut = MAGN_SESSION_MAX_DRIFT_UT;
+		session_config(&cfg, 0);
 		snprintf(buf, size, "the field changed during the session (its strength drifted by %.2f uT, its dip by %.2f deg beyond the noise; at most %.2f uT and %.2f deg are taken): a magnet or steel moving slowly near the device; run again away from it",
 			 f->drift_ut, f->dip_drift_deg, cfg.max_drift_ut,
 			 cfg.max_dip_drift_deg);
@@ -237,7 +258,7 @@ int magn_session_to_record(const struct magcal_result *fit, int64_t now,
 	for (i = 0; i < AS9888_AXES; i++) {
 		if (fabs(fit->bias[i]) > RECORD_MAGN_BIAS_MAX_NT / NT_PER_UT) {
 			snprintf(err, errlen, "hard iron %.1f uT on axis %c is beyond +-1000 uT",
-				 fit->bias[i], "XYZ"[i]);
+				 fit->bias[i], AXIS_NAMES[i]);
 			return -ERANGE;
 		}
 		m->hard_iron_nt[i] = (int32_t)lrint(fit->bias[i] * NT_PER_UT);

@@ -111,6 +111,9 @@ bool magn_session_done(const struct magcal_result *fit, bool averaged);
 int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
 		      struct magn_hint *h);
 
+/* magn_hint_text()'s longest text and its end */
+#define MAGN_HINT_TEXT_MAX	96
+
 /* @h in words: "turn it about the chip's X axis, +Y toward +Z, ..." */
 void magn_hint_text(const struct magn_hint *h, char *buf, size_t size);
 

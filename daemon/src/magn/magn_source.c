@@ -346,7 +346,10 @@ int magn_source_read(struct magn_source *s, struct magn_reading *r,
 	int axis, ret;
 
 	memset(r, 0, sizeof(*r));
-	/* a capture that stops half way ends the sample with what it has */
+	/*
+	 * a capture that stops half way ends the sample with what it has
+	 * and the one sysfs read that follows
+	 */
 	do {
 		ret = s->t ? read_chip(s, &one, err, errlen) :
 			     read_iio(s, &one, err, errlen);

@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
- * Where magn-calibrate's samples come from: one measurement of the
- * magnetometer (in uT, without any calibration: what the fit needs) and
- * of the accelerometer (the direction of gravity, for the coverage of
- * orientations), either from the chip's registers (the simulator, the raw
- * bus) or from the bound driver (its buffers, or its sysfs attributes).
+ * Where magn-calibrate's samples come from: the magnetometer (in uT,
+ * without any calibration: what the fit needs) and the accelerometer (the
+ * direction of gravity, for the coverage of orientations) of the same
+ * measurements, averaged, either from the chip's registers (the
+ * simulator, the raw bus) or from the bound driver (its buffers, or its
+ * sysfs attributes).
  */
 #ifndef AS9888_MAGN_SOURCE_H
 #define AS9888_MAGN_SOURCE_H
@@ -21,8 +22,10 @@
  * Measurements averaged into one sample where they come one after the
  * other (the chip's registers, the driver's buffered capture at
  * MAGN_CAPTURE_RATE_HZ): the magnetometer measures in 7.3 ms, so five fit
- * in magn-calibrate's 50 ms between samples, and the mean has the
- * magnetometer's noise over sqrt(5). The fit at partial coverage and the
+ * in magn-calibrate's 50 ms between samples where the data-ready
+ * interrupt ends each (polling DRDY over the bus, as the simulator's
+ * transport does, five take about 65 ms and the session runs a little
+ * slower), and the mean has the magnetometer's noise over sqrt(5). The fit at partial coverage and the
  * consistency gate are both limited by that noise (docs/DECISIONS.md,
  * "Compass v3: five measurements a sample"). A turning hand moves the
  * device a few degrees in those 40 ms: the mean is off the field's
@@ -59,8 +62,9 @@ int magn_source_open_chip(struct transport *t, const struct calib_record *rec,
 /*
  * Measure through the driver, the driver's own magnetometer calibration
  * undone, from the devices at @magn_dir and @accel_dir: the field and the
- * acceleration of one measurement from a buffered capture of both on the
- * shared data-ready trigger (magn_capture.h), or where that cannot be had
+ * acceleration of each measurement from a buffered capture of both on the
+ * shared data-ready trigger (magn_capture.h), MAGN_SOURCE_AVERAGE of them
+ * a sample, or where that cannot be had
  * (another program holds a buffer, no trigger) or stops, in_magn_*_raw and
  * in_accel_*_raw read axis by axis (each read a measurement of its own).
  * Which, and why not the capture, is said on @log (may be NULL). The

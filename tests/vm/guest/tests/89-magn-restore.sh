@@ -20,7 +20,7 @@
 #    record restores the defaults;
 #  - magn-calibrate through the driver on the board tumbling two degrees
 #    a measurement stores a calibration, its samples from both devices'
-#    buffers on the data-ready trigger (one measurement a sample), and
+#    buffers on the data-ready trigger (five measurements a sample), and
 #    leaves every buffer attribute as it found it.
 plan 28
 load_sim
@@ -116,7 +116,7 @@ check "restore of the format 1 record" \
 eq "format 1 record: the driver's defaults" "$(mg calibbias) $(mg calibscale)" \
 	"0 0 0 1.000000 1.000000 1.000000"
 
-# --- magn-calibrate through the driver: both buffers, one measurement a sample ------
+# --- magn-calibrate through the driver: both buffers, five measurements a sample ---
 # bufstate: both devices' buffer attributes and scan elements, one line
 bufstate() {
 	for _bs_d in $DEV $MDEV; do
