@@ -82,6 +82,8 @@ static void refusal_says_the_coverage(void **state)
 static void hint_way_out(void **state)
 {
 	static const double hard[3] = { 120, -80, 45 };
+	static const double turned[3][3] = { { 0, -1, 0 }, { 1, 0, 0 },
+					     { 0, 0, 1 } };
 	struct magcal_session *fit = magcal_new(NULL);
 	struct magn_hint h;
 	double m[3], polar, azim;
@@ -102,12 +104,19 @@ static void hint_way_out(void **state)
 	m[0] = 48 * sin(50 * DEG) + hard[0];
 	m[1] = hard[1];
 	m[2] = 48 * cos(50 * DEG) + hard[2];
-	assert_int_equal(magn_session_hint(fit, m, &h), 0);
+	assert_int_equal(magn_session_hint(fit, m, NULL, &h), 0);
 	assert_int_equal(h.axis, 1);
 	assert_int_equal(h.sign, -1);
 	assert_true(fabs(h.deg - 40) < 0.5);
 	magn_hint_text(&h, text, sizeof(text));
 	assert_string_equal(text, "turn it about the chip's Y axis, +Z toward -X, about 40 deg");
+	/*
+	 * the chip mounted turned by 90 deg about Z (the device's X is the
+	 * chip's -Y): the same turn named in the device's axes
+	 */
+	assert_int_equal(magn_session_hint(fit, m, turned, &h), 0);
+	magn_hint_text(&h, text, sizeof(text));
+	assert_string_equal(text, "turn it about the device's X axis, +Y toward +Z, about 40 deg");
 	/* the right-handed sense, named as such */
 	h = (struct magn_hint){ .axis = 0, .sign = 1, .deg = 12.4 };
 	magn_hint_text(&h, text, sizeof(text));

@@ -54,6 +54,7 @@ static struct transport *open_sim(void)
 static void chip_samples(void **state)
 {
 	static const double want[AS9888_AXES] = { 20, -5, -40 };
+	double mount[AS9888_AXES][AS9888_AXES];
 	struct magn_source *s;
 	struct magn_reading r;
 	double sum[AS9888_AXES] = { 0 };
@@ -78,6 +79,8 @@ static void chip_samples(void **state)
 		assert_true(r.accel[2] > 200 && fabs(r.accel[0]) < 40 &&
 			    fabs(r.accel[1]) < 40);
 	}
+	/* the chip's registers: no device frame */
+	assert_false(magn_source_mount(s, mount));
 	for (axis = 0; axis < AS9888_AXES; axis++)
 		if (fabs(sum[axis] / n - want[axis]) > 0.6)
 			fail_msg("axis %d reads %.3f uT, not %.1f", axis,
@@ -404,6 +407,48 @@ static void iio_buffered(void **state)
 	fclose(log);
 }
 
+/*
+ * The device's frame: the driver's in_magn_mount_matrix read at open;
+ * none, or one that is no mount matrix (said), leaves the chip's axes
+ */
+static void iio_mount(void **state)
+{
+	const char *m[3] = { "165\n", "-20\n", "0\n" };
+	const char *a[3] = { "3\n", "-1\n", "255\n" };
+	struct fake_sysfs *f = *state;
+	double mount[AS9888_AXES][AS9888_AXES];
+	char err[512], text[1024], path[600];
+	struct magn_source *s;
+	FILE *log = tmpfile();
+
+	assert_non_null(log);
+	fake_magn_calibration(f, false);
+	put_raw(f, m, a);
+	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
+					      log, &s, err, sizeof(err)), 0);
+	assert_false(magn_source_mount(s, mount));
+	magn_source_close(s);
+
+	fake_put(f->magn, "in_magn_mount_matrix", "0, -1, 0; 1, 0, 0; 0, 0, 1\n");
+	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
+					      log, &s, err, sizeof(err)), 0);
+	assert_true(magn_source_mount(s, mount));
+	assert_true(mount[0][1] == -1 && mount[1][0] == 1 && mount[2][2] == 1 &&
+		    mount[0][0] == 0);
+	magn_source_close(s);
+
+	fake_put(f->magn, "in_magn_mount_matrix", "0, -1, 0; 1, 0, 0\n");
+	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
+					      log, &s, err, sizeof(err)), 0);
+	assert_false(magn_source_mount(s, mount));
+	log_text(log, text, sizeof(text));
+	assert_non_null(strstr(text, "in_magn_mount_matrix reads \"0, -1, 0; 1, 0, 0\", not a mount matrix: turns are named in the chip's axes"));
+	magn_source_close(s);
+	snprintf(path, sizeof(path), "%s/in_magn_mount_matrix", f->magn);
+	assert_int_equal(unlink(path), 0);
+	fclose(log);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -411,6 +456,7 @@ int main(void)
 		cmocka_unit_test(chip_other_refused),
 		cmocka_unit_test(iio_samples),
 		cmocka_unit_test(iio_buffered),
+		cmocka_unit_test(iio_mount),
 	};
 
 	return cmocka_run_group_tests_name("magn-source", tests,

@@ -259,7 +259,7 @@ static void follow_hint(const struct magcal_session *s, const double mut[3],
 	double v[3], n = 0;
 	int i;
 
-	if (magn_session_hint(s, mut, &h))
+	if (magn_session_hint(s, mut, NULL, &h))
 		return;
 	for (i = 0; i < 3; i++) {
 		v[i] = (i == h.axis ? h.sign : 0) + between(-1, 1) / 3;

@@ -38,14 +38,21 @@ bool magn_session_done(const struct magcal_result *fit, bool averaged)
 }
 
 int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
-		      struct magn_hint *h)
+		      const double (*mount)[AS9888_AXES], struct magn_hint *h)
 {
-	double axis[3], deg;
-	int i, ret;
+	double chip[AS9888_AXES], axis[AS9888_AXES], deg;
+	int i, j, ret;
 
-	ret = magcal_guide(fit, m_ut, axis, &deg);
+	ret = magcal_guide(fit, m_ut, chip, &deg);
 	if (ret)
 		return ret;
+	/* a turn's axis is a vector: the mount matrix takes it over */
+	for (i = 0; i < AS9888_AXES; i++) {
+		axis[i] = mount ? 0 : chip[i];
+		for (j = 0; mount && j < AS9888_AXES; j++)
+			axis[i] += mount[i][j] * chip[j];
+	}
+	h->device = mount != NULL;
 	h->axis = 0;
 	for (i = 1; i < AS9888_AXES; i++)
 		if (fabs(axis[i]) > fabs(axis[h->axis]))
@@ -61,21 +68,29 @@ void magn_hint_text(const struct magn_hint *h, char *buf, size_t size)
 	static const char name[] = AXIS_NAMES;
 	int from = (h->axis + 1) % AS9888_AXES, to = (h->axis + 2) % AS9888_AXES;
 
-	snprintf(buf, size, "turn it about the chip's %c axis, +%c toward %c%c, about %.0f deg",
-		 name[h->axis], name[from], h->sign > 0 ? '+' : '-', name[to],
-		 h->deg);
+	snprintf(buf, size, "turn it about the %s's %c axis, +%c toward %c%c, about %.0f deg",
+		 h->device ? "device" : "chip", name[h->axis], name[from],
+		 h->sign > 0 ? '+' : '-', name[to], h->deg);
 }
 
-/* A progress line: the coverage and where to turn next */
+/*
+ * A progress line: the coverage and where to turn next, in the device's
+ * axes where the source knows them
+ */
 static void say_progress(const struct magcal_session *fit,
-			 const struct magn_reading *r, FILE *progress)
+			 struct magn_source *src, const struct magn_reading *r,
+			 FILE *progress)
 {
+	double mount[AS9888_AXES][AS9888_AXES];
+	bool device = magn_source_mount(src, mount);
 	struct magn_hint h;
 	char hint[MAGN_HINT_TEXT_MAX];
 
 	fprintf(progress, "coverage %3.0f%%, %u samples kept",
 		100 * magcal_progress(fit), magcal_count(fit));
-	if (!magn_session_hint(fit, r->field_ut, &h)) {
+	if (!magn_session_hint(fit, r->field_ut,
+			       device ? (const double (*)[AS9888_AXES])mount :
+					NULL, &h)) {
 		magn_hint_text(&h, hint, sizeof(hint));
 		fprintf(progress, "; to cover more: %s", hint);
 	}
@@ -175,7 +190,7 @@ int magn_session_run(struct magn_source *src, uint64_t timeout_ns,
 					 res->samples >= next_line)) {
 			next_progress = kept + MAGN_SESSION_PROGRESS_EVERY;
 			next_line = res->samples + MAGN_SESSION_PROGRESS_SAMPLES;
-			say_progress(fit, &r, progress);
+			say_progress(fit, src, &r, progress);
 		}
 		if (kept >= next_solve) {
 			next_solve = kept + MAGN_SESSION_SOLVE_EVERY;

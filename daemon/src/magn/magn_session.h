@@ -61,15 +61,18 @@
 
 /**
  * struct magn_hint - a turn of the device that covers more directions
- * @axis:	the chip's axis to turn the device about (0 X, 1 Y, 2 Z)
+ * @axis:	the axis to turn the device about (0 X, 1 Y, 2 Z)
  * @sign:	+1: right-handed about it (X turns +Y toward +Z, Y turns
  *		+Z toward +X, Z turns +X toward +Y); -1: the other way
  * @deg:	about how far
+ * @device:	@axis is the device's (the driver's mount matrix applied),
+ *		not the chip's
  */
 struct magn_hint {
 	int axis;
 	int sign;
 	double deg;
+	bool device;
 };
 
 /**
@@ -105,16 +108,17 @@ bool magn_session_done(const struct magcal_result *fit, bool averaged);
 
 /*
  * Where to turn the device from the reading @m_ut to cover the nearest
- * directions not covered yet (magcal_guide()), as a turn about the chip's
- * axis nearest to the exact one: 0, or magcal_guide()'s -errno
+ * directions not covered yet (magcal_guide()), as a turn about the
+ * device's axis nearest to the exact one when @mount (device = mount *
+ * sensor) is given, else the chip's: 0, or magcal_guide()'s -errno
  */
 int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
-		      struct magn_hint *h);
+		      const double (*mount)[AS9888_AXES], struct magn_hint *h);
 
 /* magn_hint_text()'s longest text and its end */
 #define MAGN_HINT_TEXT_MAX	96
 
-/* @h in words: "turn it about the chip's X axis, +Y toward +Z, ..." */
+/* @h in words: "turn it about the device's X axis, +Y toward +Z, ..." */
 void magn_hint_text(const struct magn_hint *h, char *buf, size_t size);
 
 /*

@@ -37,6 +37,8 @@
  * @scale_ut:	uT per raw LSB of each magnetometer axis (the EEPROM's EHC)
  * @cap:	the driver's buffered capture of both devices, or NULL: sysfs
  * @log:	where the way the driver is read is said, or NULL
+ * @mount:	the driver's mount matrix (device = mount * sensor)
+ * @has_mount:	@mount was read: the device's frame is known
  */
 struct magn_source {
 	struct transport *t;
@@ -47,6 +49,8 @@ struct magn_source {
 	double scale_ut[AS9888_AXES];
 	struct magn_capture *cap;
 	FILE *log;
+	double mount[AS9888_AXES][AS9888_AXES];
+	bool has_mount;
 };
 
 static int fail(char *err, size_t errlen, int ret, const char *fmt, ...)
@@ -126,6 +130,29 @@ int magn_source_open_chip(struct transport *t, const struct calib_record *rec,
 }
 
 /*
+ * The device's frame from the magnetometer's in_magn_mount_matrix; a
+ * driver without one (or one that is no mount matrix: said) leaves the
+ * chip's axes, which only the hints of the progress lines use
+ */
+static void read_mount(struct magn_source *s)
+{
+	char val[IIO_ATTR_MAX];
+	int ret;
+
+	ret = iio_read_attr(s->magn_dir, "in_magn_mount_matrix", val,
+			    sizeof(val));
+	if (ret < 0)
+		return;
+	if (iio_parse_mount_matrix(val, s->mount)) {
+		if (s->log)
+			fprintf(s->log, "samples: %s/in_magn_mount_matrix reads \"%s\", not a mount matrix: turns are named in the chip's axes\n",
+				s->magn_dir, val);
+		return;
+	}
+	s->has_mount = true;
+}
+
+/*
  * The buffered capture of both devices when it can be had; else say why
  * and read sysfs
  */
@@ -177,6 +204,7 @@ int magn_source_open_iio(const char *accel_dir, const char *magn_dir,
 	}
 	magn_scale_ut(raw, s->scale_ut);
 	s->log = log;
+	read_mount(s);
 	start_capture(s);
 	*out = s;
 
@@ -369,6 +397,14 @@ int magn_source_read(struct magn_source *s, struct magn_reading *r,
 	r->measurements = n;
 
 	return 0;
+}
+
+bool magn_source_mount(const struct magn_source *s,
+		       double m[AS9888_AXES][AS9888_AXES])
+{
+	if (s->has_mount)
+		memcpy(m, s->mount, sizeof(s->mount));
+	return s->has_mount;
 }
 
 void magn_source_sleep(struct magn_source *s, uint64_t ns)

@@ -10,6 +10,7 @@
 #ifndef AS9888_MAGN_SOURCE_H
 #define AS9888_MAGN_SOURCE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -82,6 +83,14 @@ int magn_source_open_iio(const char *accel_dir, const char *magn_dir,
  */
 int magn_source_read(struct magn_source *s, struct magn_reading *r,
 		     char *err, size_t errlen);
+
+/*
+ * The device's frame: true with the driver's mount matrix in @m (device =
+ * m * sensor); false when only the chip's axes are known (its registers,
+ * or a driver without a mount matrix)
+ */
+bool magn_source_mount(const struct magn_source *s,
+		       double m[AS9888_AXES][AS9888_AXES]);
 
 /* Wait @ns on the source's clock (virtual on a virtual-clock simulator) */
 void magn_source_sleep(struct magn_source *s, uint64_t ns);

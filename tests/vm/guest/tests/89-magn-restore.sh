@@ -22,7 +22,7 @@
 #    a measurement stores a calibration, its samples from both devices'
 #    buffers on the data-ready trigger (five measurements a sample), and
 #    leaves every buffer attribute as it found it.
-plan 28
+plan 29
 load_sim
 load_driver
 CALIBD=/bin/as9888-calibd
@@ -140,7 +140,9 @@ if [ -n "$T" ]; then
 	tail -n 2 $O/mc.log | sed 's/^/# /'
 	check "its samples from both devices' buffers on $T at 100 Hz, 5 measurements a sample" \
 		grep -q "^samples: both devices' buffers on $T at 100 Hz, .*, 5 measurements averaged a sample" $O/mc.log
+	check "its progress lines name the turn to make in the device's axes (the driver's mount matrix)" \
+		grep -q "to cover more: turn it about the device's [XYZ] axis, +[XYZ] toward [+-][XYZ], about [0-9]* deg" $O/mc.log
 	eq "afterwards every buffer attribute as it was" "$(bufstate)" "$B0"
 else
-	nok_for 3 "magn-calibrate through both buffers" "no data-ready trigger"
+	nok_for 4 "magn-calibrate through both buffers" "no data-ready trigger"
 fi
