@@ -437,6 +437,17 @@ static void iio_mount(void **state)
 		    mount[0][0] == 0);
 	magn_source_close(s);
 
+	/* a device tree's long decimals: 170 characters, read whole */
+	fake_put(f->magn, "in_magn_mount_matrix",
+		 "0.707106781186548, -0.707106781186548, 0.000000000000000; "
+		 "0.707106781186548, 0.707106781186548, 0.000000000000000; "
+		 "0.000000000000000, 0.000000000000000, 1.000000000000000\n");
+	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
+					      log, &s, err, sizeof(err)), 0);
+	assert_true(magn_source_mount(s, mount));
+	assert_true(fabs(mount[0][1] + 0.707106) < 1e-9 && mount[2][2] == 1);
+	magn_source_close(s);
+
 	fake_put(f->magn, "in_magn_mount_matrix", "0, -1, 0; 1, 0, 0\n");
 	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
 					      log, &s, err, sizeof(err)), 0);

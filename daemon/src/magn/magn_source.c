@@ -26,6 +26,8 @@
 /* (count + calibbias) * calibscale: the driver's largest raw reading */
 #define MAGN_RAW_RANGE_MAX	((MAGN_RAW_MAX + MAGN_CALIBBIAS_MAX) * 2)
 #define MICRO		1000000.0
+/* in_magn_mount_matrix: nine decimals as the device tree spells them */
+#define MOUNT_TEXT_MAX	512
 
 /**
  * struct magn_source - a sample source
@@ -136,13 +138,19 @@ int magn_source_open_chip(struct transport *t, const struct calib_record *rec,
  */
 static void read_mount(struct magn_source *s)
 {
-	char val[IIO_ATTR_MAX];
+	char val[MOUNT_TEXT_MAX];
 	int ret;
 
 	ret = iio_read_attr(s->magn_dir, "in_magn_mount_matrix", val,
 			    sizeof(val));
-	if (ret < 0)
+	if (ret == -ENOENT)
 		return;
+	if (ret < 0) {
+		if (s->log)
+			fprintf(s->log, "samples: %s/in_magn_mount_matrix: %s: turns are named in the chip's axes\n",
+				s->magn_dir, strerror(-ret));
+		return;
+	}
 	if (iio_parse_mount_matrix(val, s->mount)) {
 		if (s->log)
 			fprintf(s->log, "samples: %s/in_magn_mount_matrix reads \"%s\", not a mount matrix: turns are named in the chip's axes\n",
