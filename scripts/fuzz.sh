@@ -11,7 +11,7 @@
 #   uevent      kernel uevent datagrams
 #   iio_scan    the IIO buffer layout (scan_elements _index/_type) and samples
 #   iio_value   the driver's attribute values: self-test verdict and
-#               readings, integers, the mount matrix
+#               readings, integers
 #   hal_text    the sensors HAL's configuration file, mount matrix, rates
 #               and numbers (hal/)
 # Usage: scripts/fuzz.sh [SECONDS [TARGET...]]: SECONDS (default 60) in

@@ -24,6 +24,7 @@
 #include "hal_find.h"
 #include "hal_queue.h"
 #include "hal_stream.h"
+#include "iio_mount.h"
 
 #define NSEC_PER_SEC	INT64_C(1000000000)
 #define NSEC_PER_MSEC	INT64_C(1000000)
@@ -380,7 +381,7 @@ static void accel_sample(struct as9888_hal *h, const uint8_t *sample, int64_t ha
 	h->accel_raw_at = now_ns();
 	if (!s->active || !due(s, e.timestamp_ns, half, dev_period))
 		return;
-	hal_mat_apply(h->accel.layout.mount, v, d);
+	iio_mount_apply(h->accel.layout.mount, v, d);
 	for (i = 0; i < 3; i++)
 		e.v[i] = (float)d[i];
 	e.status = saturated ? AS9888_STATUS_UNRELIABLE : AS9888_STATUS_ACCURACY_HIGH;
@@ -415,7 +416,7 @@ static void magn_sample(struct as9888_hal *h, const uint8_t *sample, int64_t hal
 	e.timestamp_ns = ts;
 	e.status = status;
 	if (cal->active && due(cal, ts, half, dev_period)) {
-		hal_mat_apply(h->magn.layout.mount, f, d);
+		iio_mount_apply(h->magn.layout.mount, f, d);
 		e.handle = AS9888_HANDLE_MAGN;
 		e.type = AS9888_TYPE_MAGNETIC_FIELD;
 		for (i = 0; i < 3; i++)
@@ -426,8 +427,8 @@ static void magn_sample(struct as9888_hal *h, const uint8_t *sample, int64_t hal
 		/* uncalibrated - bias = calibrated, in either frame */
 		for (i = 0; i < 3; i++)
 			f[i] += b[i];
-		hal_mat_apply(h->magn.layout.mount, f, d);
-		hal_mat_apply(h->magn.layout.mount, b, db);
+		iio_mount_apply(h->magn.layout.mount, f, d);
+		iio_mount_apply(h->magn.layout.mount, b, db);
 		e.handle = AS9888_HANDLE_MAGN_UNCAL;
 		e.type = AS9888_TYPE_MAGNETIC_FIELD_UNCALIBRATED;
 		for (i = 0; i < 3; i++) {

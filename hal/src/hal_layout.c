@@ -7,6 +7,7 @@
 
 #include "hal_attr.h"
 #include "hal_layout.h"
+#include "iio_mount.h"
 
 const char *const hal_axis_names[3] = { "x", "y", "z" };
 
@@ -59,36 +60,11 @@ static int read_axis_number(const char *dir, const char *type, const char *axis,
 	return ret;
 }
 
-int hal_mount_parse(const char *s, double m[3][3])
-{
-	double v[9];
-	int i, used = -1;
-
-	if (sscanf(s, " %lf , %lf , %lf ; %lf , %lf , %lf ; %lf , %lf , %lf %n",
-		   &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7], &v[8],
-		   &used) != 9 || used < 0 || s[used])
-		return -EINVAL;
-	for (i = 0; i < 9; i++)
-		if (!isfinite(v[i]) || fabs(v[i]) > 1e6)
-			return -EINVAL;
-	for (i = 0; i < 9; i++)
-		m[i / 3][i % 3] = v[i];
-	return 0;
-}
-
-void hal_mat_apply(const double m[3][3], const double in[3], double out[3])
-{
-	int i;
-
-	for (i = 0; i < 3; i++)
-		out[i] = m[i][0] * in[0] + m[i][1] * in[1] + m[i][2] * in[2];
-}
-
 static int read_mount(const char *dir, const char *type, double m[3][3],
 		      char *err, size_t errlen)
 {
 	static const double identity[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
-	char name[64], text[128];
+	char name[64], text[IIO_MOUNT_TEXT_MAX];
 	int ret;
 
 	snprintf(name, sizeof(name), "in_%s_mount_matrix", type);
@@ -100,7 +76,7 @@ static int read_mount(const char *dir, const char *type, double m[3][3],
 	}
 	if (ret)
 		return ret;
-	if (hal_mount_parse(text, m)) {
+	if (iio_mount_parse(text, m)) {
 		snprintf(err, errlen, "%s/%s: \"%s\" is no mount matrix (\"a, b, c; d, e, f; g, h, i\")",
 			 dir, name, text);
 		return -EINVAL;

@@ -46,15 +46,6 @@ int hal_layout_read(const char *dir, const char *type, double unit,
 		    struct hal_layout *l, char *err, size_t errlen);
 
 /*
- * "a, b, c; d, e, f; g, h, i" (in_<type>_mount_matrix): rows of the
- * matrix. 0, or -EINVAL (anything else, a value not finite)
- */
-int hal_mount_parse(const char *s, double m[3][3]);
-
-/* out = m * in (out may not be in) */
-void hal_mat_apply(const double m[3][3], const double in[3], double out[3]);
-
-/*
  * One sample: @raw the axes' values as the buffer holds them (for the
  * calibration daemon's feed), @sensor in Android's unit in the sensor
  * frame, @ts the timestamp; true when an axis is at the limit of its

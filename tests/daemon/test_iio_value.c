@@ -171,42 +171,6 @@ static void rate_max(void **state)
 	assert_int_equal(hz, 77);
 }
 
-static void mount_matrix(void **state)
-{
-	static const char *const malformed[] = {
-		"", "1, 0, 0; 0, 1, 0", "1, 0, 0; 0, 1, 0; 0, 0",
-		"1,0,0;0,1,0;0,0,1", "1, 0, 0;0, 1, 0; 0, 0, 1",
-		"1, 0, 0; 0, 1, 0; 0, 0, 1; ", "1, 0, 0; 0, 1, 0; 0, 0, 1\n",
-		"1., 0, 0; 0, 1, 0; 0, 0, 1", "x, 0, 0; 0, 1, 0; 0, 0, 1",
-		"1, 0, 0, 0; 1, 0; 0, 0, 1", "1, 0, 0; 0, 1, 0; 0, 0, 1 ",
-	};
-	static const char *const out_of_range[] = {
-		"2, 0, 0; 0, 1, 0; 0, 0, 1", "1, 0, 0; 0, -1.5, 0; 0, 0, 1",
-		"1, 0, 0; 0, 1, 0; 0, 0, 99999999999999",
-	};
-	double m[AS9888_AXES][AS9888_AXES], keep;
-	size_t i;
-
-	(void)state;
-	assert_int_equal(iio_parse_mount_matrix("0, -1, 0; 1, 0, 0; 0, 0, 1", m), 0);
-	assert_true(m[0][0] == 0 && m[0][1] == -1 && m[1][0] == 1 &&
-		    m[2][2] == 1 && m[2][0] == 0);
-	/* the decimals a device tree gives, beyond six dropped */
-	assert_int_equal(iio_parse_mount_matrix(
-		"0.70710678118, -0.70710678118, 0; 0.70710678118, 0.70710678118, 0; 0, 0, -1",
-		m), 0);
-	assert_true(fabs(m[0][0] - 0.707106) < 1e-12 &&
-		    fabs(m[0][1] + 0.707106) < 1e-12 && m[2][2] == -1);
-	keep = m[1][1];
-	for (i = 0; i < ARRAY_LEN(malformed); i++)
-		if (iio_parse_mount_matrix(malformed[i], m) != -EINVAL)
-			fail_msg("\"%s\" not refused as malformed", malformed[i]);
-	for (i = 0; i < ARRAY_LEN(out_of_range); i++)
-		if (iio_parse_mount_matrix(out_of_range[i], m) != -ERANGE)
-			fail_msg("\"%s\" not refused as out of range", out_of_range[i]);
-	assert_true(m[1][1] == keep);
-}
-
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -217,7 +181,6 @@ int main(void)
 		cmocka_unit_test(selftest_readings),
 		cmocka_unit_test(selftest_readings_refused),
 		cmocka_unit_test(rate_max),
-		cmocka_unit_test(mount_matrix),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -445,7 +445,8 @@ static void iio_mount(void **state)
 	assert_int_equal(magn_source_open_iio(f->dev, f->magn, fake_example_eeprom,
 					      log, &s, err, sizeof(err)), 0);
 	assert_true(magn_source_mount(s, mount));
-	assert_true(fabs(mount[0][1] + 0.707106) < 1e-9 && mount[2][2] == 1);
+	assert_true(fabs(mount[0][1] + 0.707106781186548) < 1e-12 &&
+		    mount[2][2] == 1);
 	magn_source_close(s);
 
 	fake_put(f->magn, "in_magn_mount_matrix", "0, -1, 0; 1, 0, 0\n");

@@ -12,6 +12,7 @@
 #include "fuzz_text.h"
 #include "hal_attr.h"
 #include "hal_layout.h"
+#include "iio_mount.h"
 #include "hal_stream.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -35,7 +36,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		   !memchr(c.socket, '\0', sizeof(c.socket))) {
 		abort();
 	}
-	if (!hal_mount_parse(s, m))
+	if (!iio_mount_parse(s, m))
 		for (i = 0; i < 9; i++)
 			if (!isfinite(m[i / 3][i % 3]))
 				abort();

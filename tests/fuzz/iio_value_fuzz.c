@@ -2,8 +2,7 @@
 /*
  * libFuzzer target: the driver's attribute values as the daemon reads them
  * (iio_value.h): the self-test verdict and the debugfs self-test readings,
- * integers and the mount matrix. Readings, integers and matrix elements
- * accepted are within their limits.
+ * and integers. Readings and integers accepted are within their limits.
  */
 #include "fuzz_text.h"
 #include "chip/iio_value.h"
@@ -14,10 +13,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
 	char *s = fuzz_text(data, size);
 	int32_t adj[AS9888_AXES];
-	double m[AS9888_AXES][AS9888_AXES];
 	enum iio_selftest_verdict v;
 	long l;
-	int axis, col;
+	int axis;
 
 	if (!s)
 		return 0;
@@ -28,11 +26,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 				abort();
 	if (!iio_int_parse(s, -1000, 1000, &l) && (l < -1000 || l > 1000))
 		abort();
-	if (!iio_parse_mount_matrix(s, m))
-		for (axis = 0; axis < AS9888_AXES; axis++)
-			for (col = 0; col < AS9888_AXES; col++)
-				if (!(m[axis][col] >= -1 && m[axis][col] <= 1))
-					abort();
 	free(s);
 
 	return 0;

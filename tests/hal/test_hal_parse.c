@@ -21,6 +21,7 @@
 #include "fake_sysfs.h"
 #include "hal_attr.h"
 #include "hal_find.h"
+#include "iio_mount.h"
 #include "hal_layout.h"
 #include "hal_stream.h"
 #include "hal_test_tree.h"
@@ -66,13 +67,13 @@ static void mount_matrix(void **state)
 	double m[3][3], out[3];
 	static const double in[3] = { 1, 2, 3 };
 
-	assert_int_equal(hal_mount_parse("0, 1, 0; -1, 0, 0; 0, 0, 1", m), 0);
-	hal_mat_apply(m, in, out);
+	assert_int_equal(iio_mount_parse("0, 1, 0; -1, 0, 0; 0, 0, 1", m), 0);
+	iio_mount_apply(m, in, out);
 	/* a non-identity matrix: rows times the vector */
 	assert_float_equal(out[0], 2, 1e-12);
 	assert_float_equal(out[1], -1, 1e-12);
 	assert_float_equal(out[2], 3, 1e-12);
-	assert_int_equal(hal_mount_parse("0.5, 0, 0; 0, 0.866025, 0.5; 0, -0.5, 0.866025\n", m), 0);
+	assert_int_equal(iio_mount_parse("0.5, 0, 0; 0, 0.866025, 0.5; 0, -0.5, 0.866025\n", m), 0);
 	assert_float_equal(m[1][1], 0.866025, 1e-12);
 	static const char *const bad[] = {
 		"", "1, 0, 0; 0, 1, 0", "1, 0, 0; 0, 1, 0; 0, 0, 1; 1",
@@ -80,7 +81,7 @@ static void mount_matrix(void **state)
 		"1e300, 0, 0; 0, 1, 0; 0, 0, 1",
 	};
 	for (size_t i = 0; i < sizeof(bad) / sizeof(bad[0]); i++)
-		assert_int_equal(hal_mount_parse(bad[i], m), -EINVAL);
+		assert_int_equal(iio_mount_parse(bad[i], m), -EINVAL);
 }
 
 static void rates(void **state)

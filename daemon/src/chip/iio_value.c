@@ -11,9 +11,6 @@
 #define IIO_MILLI		1000
 /* Integer digits beyond this are out of range: 10^12 * 10^6 < 2^63 */
 #define IIO_INT_DIGITS_MAX	12
-/* A mount matrix element's decimals kept (the rest dropped), and 1.0 */
-#define IIO_MOUNT_PLACES	6
-#define IIO_MOUNT_ONE		1000000
 /* Beyond any adjusted self-test reading: 4096 * (255 + 128) / 256 */
 #define IIO_SELFTEST_ABS_MAX	8192
 
@@ -24,12 +21,11 @@ static bool is_digit(char c)
 
 /*
  * A decimal at the start of @s: an optional "-", digits, and optionally
- * "." with 1..@places digits (any number when @drop_extra: those beyond
- * @places are dropped), followed by @stop (and nothing else). Its value
- * times 10^@places in *@out, and where it ends in *@end.
+ * "." with 1..@places digits, followed by @stop (and nothing else). Its
+ * value times 10^@places in *@out, and where it ends in *@end.
  */
-static int parse_decimal(const char *s, unsigned int places, bool drop_extra,
-			 char stop, int64_t *out, const char **end)
+static int parse_decimal(const char *s, unsigned int places, char stop,
+			 int64_t *out, const char **end)
 {
 	unsigned int n_int = 0, n_frac = 0;
 	int64_t ip = 0, fp = 0;
@@ -44,10 +40,9 @@ static int parse_decimal(const char *s, unsigned int places, bool drop_extra,
 		return -EINVAL;
 	if (*s == '.') {
 		for (s++; is_digit(*s); s++, n_frac++) {
-			if (n_frac >= places && !drop_extra)
+			if (n_frac == places)
 				return -EINVAL;
-			if (n_frac < places)
-				fp = fp * 10 + (*s - '0');
+			fp = fp * 10 + (*s - '0');
 		}
 		if (!n_frac)
 			return -EINVAL;
@@ -56,8 +51,6 @@ static int parse_decimal(const char *s, unsigned int places, bool drop_extra,
 		return -EINVAL;
 	if (n_int > IIO_INT_DIGITS_MAX)
 		return -ERANGE;
-	if (n_frac > places)
-		n_frac = places;
 	for (; n_frac < places; n_frac++)
 		fp *= 10;
 	for (n_frac = 0; n_frac < places; n_frac++)
@@ -74,7 +67,7 @@ int iio_int_parse(const char *s, long min, long max, long *out)
 	int64_t v;
 	int ret;
 
-	ret = parse_decimal(s, 0, false, '\0', &v, &end);
+	ret = parse_decimal(s, 0, '\0', &v, &end);
 	if (ret)
 		return ret;
 	if (v < min || v > max)
@@ -121,7 +114,7 @@ int iio_parse_selftest_readings(const char *s, int32_t adj_q8[AS9888_AXES])
 	if (!strcmp(s, "none"))
 		return -ENODATA;
 	for (axis = 0; axis < AS9888_AXES; axis++) {
-		ret = parse_decimal(s, IIO_MILLI_PLACES, false,
+		ret = parse_decimal(s, IIO_MILLI_PLACES,
 				    axis < AS9888_AXES - 1 ? ' ' : '\0',
 				    &milli, &s);
 		if (ret || milli <= -IIO_SELFTEST_ABS_MAX * IIO_MILLI ||
@@ -137,51 +130,6 @@ int iio_parse_selftest_readings(const char *s, int32_t adj_q8[AS9888_AXES])
 	return 0;
 }
 
-/* One element of a mount matrix at the start of @s, up to @stop: -1..1 */
-static int mount_element(const char *s, char stop, double *out,
-			 const char **end)
-{
-	int64_t v;
-	int ret;
-
-	ret = parse_decimal(s, IIO_MOUNT_PLACES, true, stop, &v, end);
-	if (ret)
-		return ret;
-	if (v > IIO_MOUNT_ONE || v < -IIO_MOUNT_ONE)
-		return -ERANGE;
-	*out = (double)v / IIO_MOUNT_ONE;
-
-	return 0;
-}
-
-int iio_parse_mount_matrix(const char *s, double m[AS9888_AXES][AS9888_AXES])
-{
-	double v[AS9888_AXES][AS9888_AXES];
-	int row, col, ret;
-
-	for (row = 0; row < AS9888_AXES; row++) {
-		for (col = 0; col < AS9888_AXES; col++) {
-			bool last_col = col == AS9888_AXES - 1;
-			bool last = last_col && row == AS9888_AXES - 1;
-			const char *end;
-
-			ret = mount_element(s, last ? '\0' : last_col ? ';' : ',',
-					    &v[row][col], &end);
-			if (ret)
-				return ret;
-			if (last)
-				break;
-			/* ", " within a row, "; " between rows */
-			if (end[1] != ' ')
-				return -EINVAL;
-			s = end + 2;
-		}
-	}
-	memcpy(m, v, sizeof(v));
-
-	return 0;
-}
-
 int iio_parse_rate_max(const char *s, long max, long *hz)
 {
 	long best = 0;
@@ -192,8 +140,7 @@ int iio_parse_rate_max(const char *s, long max, long *hz)
 		const char *end;
 
 		/* each rate but the last ends at a space */
-		ret = parse_decimal(s, 0, false, strchr(s, ' ') ? ' ' : '\0',
-				    &v, &end);
+		ret = parse_decimal(s, 0, strchr(s, ' ') ? ' ' : '\0', &v, &end);
 		if (ret)
 			return ret;
 		if (v < 1 || v > max)

@@ -46,13 +46,4 @@ int iio_parse_selftest_readings(const char *s, int32_t adj_q8[AS9888_AXES]);
  */
 int iio_parse_rate_max(const char *s, long max, long *hz);
 
-/*
- * in_<type>_mount_matrix: "a, b, c; d, e, f; g, h, i", the rows of the
- * matrix that turns the sensor's frame into the device's (device = m *
- * sensor), each element a decimal within -1..1 (digits beyond
- * six dropped). 0, -EINVAL (malformed) or -ERANGE; @m is
- * left untouched on error.
- */
-int iio_parse_mount_matrix(const char *s, double m[AS9888_AXES][AS9888_AXES]);
-
 #endif

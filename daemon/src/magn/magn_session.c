@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "iio_mount.h"
 #include "magn/magn_capture.h"
 #include "magn/magn_session.h"
 
@@ -41,17 +42,16 @@ int magn_session_hint(const struct magcal_session *fit, const double m_ut[3],
 		      const double (*mount)[AS9888_AXES], struct magn_hint *h)
 {
 	double chip[AS9888_AXES], axis[AS9888_AXES], deg;
-	int i, j, ret;
+	int i, ret;
 
 	ret = magcal_guide(fit, m_ut, chip, &deg);
 	if (ret)
 		return ret;
 	/* a turn's axis is a vector: the mount matrix takes it over */
-	for (i = 0; i < AS9888_AXES; i++) {
-		axis[i] = mount ? 0 : chip[i];
-		for (j = 0; mount && j < AS9888_AXES; j++)
-			axis[i] += mount[i][j] * chip[j];
-	}
+	if (mount)
+		iio_mount_apply(mount, chip, axis);
+	else
+		memcpy(axis, chip, sizeof(axis));
 	h->device = mount != NULL;
 	h->axis = 0;
 	for (i = 1; i < AS9888_AXES; i++)

@@ -13,6 +13,7 @@
 #include "ftest/ftest.h"
 #include "chip/iio.h"
 #include "chip/iio_value.h"
+#include "iio_mount.h"
 #include "common/magn_cal.h"
 #include "magn/magn_capture.h"
 #include "chip/magn_iio.h"
@@ -26,8 +27,6 @@
 /* (count + calibbias) * calibscale: the driver's largest raw reading */
 #define MAGN_RAW_RANGE_MAX	((MAGN_RAW_MAX + MAGN_CALIBBIAS_MAX) * 2)
 #define MICRO		1000000.0
-/* in_magn_mount_matrix: nine decimals as the device tree spells them */
-#define MOUNT_TEXT_MAX	512
 
 /**
  * struct magn_source - a sample source
@@ -138,7 +137,7 @@ int magn_source_open_chip(struct transport *t, const struct calib_record *rec,
  */
 static void read_mount(struct magn_source *s)
 {
-	char val[MOUNT_TEXT_MAX];
+	char val[IIO_MOUNT_TEXT_MAX];
 	int ret;
 
 	ret = iio_read_attr(s->magn_dir, "in_magn_mount_matrix", val,
@@ -151,7 +150,7 @@ static void read_mount(struct magn_source *s)
 				s->magn_dir, strerror(-ret));
 		return;
 	}
-	if (iio_parse_mount_matrix(val, s->mount)) {
+	if (iio_mount_parse(val, s->mount)) {
 		if (s->log)
 			fprintf(s->log, "samples: %s/in_magn_mount_matrix reads \"%s\", not a mount matrix: turns are named in the chip's axes\n",
 				s->magn_dir, val);
