@@ -97,12 +97,14 @@ def unit_of(path):
 
 
 def resolve(root, src, inc, headers):
-    """The header an include names: beside the file, else by its path's end."""
+    """The headers an include can name: beside the file, else every header
+    whose path ends with it (without the build's include folders the one
+    the compiler takes is not known: an arrow to each, so that no circle
+    through either is missed)."""
     here = os.path.normpath(os.path.join(os.path.dirname(src), inc))
     if os.path.isfile(os.path.join(root, here)):
-        return here
-    hits = [h for h in headers if h == inc or h.endswith('/' + inc)]
-    return hits[0] if len(hits) == 1 else None
+        return [here]
+    return [h for h in headers if h == inc or h.endswith('/' + inc)]
 
 
 def check_circles(root):
@@ -114,12 +116,10 @@ def check_circles(root):
         u = unit_of(f)
         edges.setdefault(u, {})
         for line, inc in includes(root, f):
-            h = resolve(root, f, inc, headers)
-            if h is None:
-                continue
-            v = unit_of(h)
-            if v != u:
-                edges[u].setdefault(v, f'{f}:{line}')
+            for h in resolve(root, f, inc, headers):
+                v = unit_of(h)
+                if v != u:
+                    edges[u].setdefault(v, f'{f}:{line}')
     # Tarjan's strongly connected components
     index, low, stack, on, comps = {}, {}, [], set(), []
 

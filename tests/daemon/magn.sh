@@ -124,7 +124,8 @@ PY
 # a consumer turned slowly (1.5 deg a sample) for 900 samples covers about
 # half the sphere: the fit library takes the samples (its own floor is
 # 40 % coverage), the field mode does not (magn-calibrate's 60 % for
-# samples of one measurement, part of the gate's margin; before: stored); they go, and the mode starts again
+# samples of one measurement, part of the gate's margin; before: stored);
+# they go, and the mode starts again
 "$here/magn_feed.py" "$sock" 900 7 120 -80 45 1.5 >"$work/feed" 2>&1
 frc=$?
 check "field mode, fed while turned slowly: a fit of about half the sphere, not stored (no .magn file)" eval '
@@ -138,7 +139,8 @@ rm -f "$work/run/magn-samples"
 "$here/magn_feed.py" "$sock" 99 1 120 -80 45 >"$work/feed" 2>&1
 frc=$?
 check "field mode, 99 samples fed: the fit at the 50th too little covered, the record untouched (format 1, no .magn file)" eval '
-	[ $frc -eq 0 ] && grep -q "^format = as9888-calibration 1$" "$rec" && [ ! -e "$rec.magn" ]'
+	[ $frc -eq 0 ] && grep -Eq "^fit: [a-z ]+, coverage ([0-9]|[1-5][0-9])%" "$work/feed" &&
+	grep -q "^format = as9888-calibration 1$" "$rec" && [ ! -e "$rec.magn" ]'
 "$here/magn_feed.py" "$sock" 1 2 120 -80 45 >"$work/feed" 2>&1
 frc=$?
 check "the 100th: a good fit, stored in <record>.magn, the record left format 1 (issue 40 N6)" eval '[ $frc -eq 0 ] &&

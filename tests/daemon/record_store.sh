@@ -140,11 +140,12 @@ sock=$work/sock
 # shellcheck disable=SC2086
 "$calibd" daemon $sim --record "$rec" --socket "$sock" 2>"$work/err" &
 pid=$!
-# ready when its socket is there (a busy machine only makes it slower; a
-# daemon that died is not waited for, one that makes no socket in 120 s
-# has stalled)
+# ready when it says so, after its recovery of the record (its socket is
+# made before: a kill then would find the recovery not run yet); a busy
+# machine only makes it slower, a daemon that died is not waited for, one
+# not ready in 120 s has stalled
 t0=$(date +%s)
-while [ ! -S "$sock" ] && kill -0 "$pid" 2>/dev/null &&
+while ! grep -q "ready: record" "$work/err" && kill -0 "$pid" 2>/dev/null &&
 	[ $(($(date +%s) - t0)) -lt 120 ]; do sleep 0.1; done
 kill "$pid" 2>/dev/null
 wait "$pid" 2>/dev/null

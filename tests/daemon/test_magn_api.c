@@ -219,12 +219,16 @@ static void turned_board(void **state)
 	/*
 	 * ... unless its previous one is the record's (a change of both cut
 	 * between the files): that one is used, as recovery will put it back
+	 * (its hard iron 2 uT apart, to tell the two files apart)
 	 */
+	rec.magn.hard_iron_nt[0] += 2000;
 	write_text("turned.magn.previous", buf,
 		   record_magn_format(&rec.magn, example, rec.created, buf,
 				      sizeof(buf)), file, sizeof(file));
 	assert_int_equal(as9888_magn_load(path, &cal, err, sizeof(err)), 0);
 	assert_true(cal.rotation[0][1] == rot[0][1] / 1e6);
+	assert_true(fabs(cal.hard_iron_ut[0] -
+			 rec.magn.hard_iron_nt[0] / 1e3) < 1e-9);
 	unlink(file);
 	/* a .magn file of none (after a rollback): no calibration */
 	rec.magn.present = false;

@@ -232,8 +232,7 @@ void magn_session_why(const struct magn_session_result *res, char *buf,
 	struct magcal_config cfg;
 
 	if (!res->solved || f->status == MAGCAL_NO_COVERAGE ||
-	    (f->status == MAGCAL_OK &&
-	     f->coverage < magn_session_coverage(res->averaged))) {
+	    (f->status == MAGCAL_OK && !magn_session_done(f, res->averaged))) {
 		snprintf(buf, size, "not enough orientations covered (%.0f%% in %.0f s, %u samples): turn the device slowly through every direction (a figure eight, then over on every side) and run again",
 			 /* what was judged: the last fit's, when there was one */
 			 100 * (res->solved ? f->coverage : res->coverage),

@@ -44,7 +44,7 @@ static void print_with_remedy(const char *err, int errnum)
 static int build_paths(struct record_paths *p, const char *path)
 {
 	/* the journals: the previous file's name and RECORD_PAIR_JOURNAL_SUFFIX */
-	size_t room = sizeof(p->record) - sizeof(RECORD_STORE_PREVIOUS) -
+	size_t room = sizeof(p->record) - sizeof(RECORD_PREVIOUS_SUFFIX) -
 		      sizeof(RECORD_MAGN_SUFFIX) - sizeof(RECORD_PAIR_JOURNAL_SUFFIX);
 
 	if (strlen(path) > room) {
@@ -53,16 +53,16 @@ static int build_paths(struct record_paths *p, const char *path)
 	}
 	snprintf(p->record, sizeof(p->record), "%s", path);
 	snprintf(p->previous, sizeof(p->previous), "%s%s", path,
-		 RECORD_STORE_PREVIOUS);
+		 RECORD_PREVIOUS_SUFFIX);
 	snprintf(p->magn, sizeof(p->magn), "%s%s", path, RECORD_MAGN_SUFFIX);
 	snprintf(p->magn_previous, sizeof(p->magn_previous), "%s%s%s", path,
-		 RECORD_MAGN_SUFFIX, RECORD_STORE_PREVIOUS);
+		 RECORD_MAGN_SUFFIX, RECORD_PREVIOUS_SUFFIX);
 	snprintf(p->lock, sizeof(p->lock), "%s%s", path,
 		 RECORD_STORE_LOCK_SUFFIX);
 	snprintf(p->record_journal, sizeof(p->record_journal), "%s%s%s", path,
-		 RECORD_STORE_PREVIOUS, RECORD_PAIR_JOURNAL_SUFFIX);
+		 RECORD_PREVIOUS_SUFFIX, RECORD_PAIR_JOURNAL_SUFFIX);
 	snprintf(p->magn_journal, sizeof(p->magn_journal), "%s%s%s%s", path,
-		 RECORD_MAGN_SUFFIX, RECORD_STORE_PREVIOUS,
+		 RECORD_MAGN_SUFFIX, RECORD_PREVIOUS_SUFFIX,
 		 RECORD_PAIR_JOURNAL_SUFFIX);
 
 	return 0;
@@ -619,12 +619,13 @@ int record_store_replace(struct record_store *s, struct calib_record *rec,
 	ret = record_pair_replace(&pair, buf, (size_t)len, old, (size_t)old_len,
 				  RECORD_MODE, err, errlen);
 	/*
-	 * The record's pair stays the old one (no journal left): so does the
-	 * magnetometer's. With its journal left the record may be either;
-	 * recovery settles it, then puts the magnetometer's pair in step.
+	 * The record's pair stays the old one (its journal known to be
+	 * gone): so does the magnetometer's. With its journal left, or not
+	 * known to be gone, the record may be either; recovery settles it,
+	 * then puts the magnetometer's pair in step.
 	 */
 	if (ret && magn && access(s->p.record_journal, F_OK) &&
-	    undo_magn(&s->p, &undo, why, sizeof(why))) {
+	    errno == ENOENT && undo_magn(&s->p, &undo, why, sizeof(why))) {
 		size_t n = strlen(err);
 
 		snprintf(err + n, errlen - n, "; %s could not be put back (%s): as9888-calibd rollback",

@@ -41,7 +41,6 @@
 #define LOCK_MODE		0600
 #define STATE_DIR_MODE		0755
 #define RECORD_STORE_ERR_LEN	512
-#define RECORD_STORE_PREVIOUS	RECORD_PREVIOUS_SUFFIX
 #define RECORD_STORE_LOCK_SUFFIX ".lock"
 
 /* The store's files, named once */
